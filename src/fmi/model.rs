@@ -1,0 +1,89 @@
+//! What a model provides to the generic FMI glue.
+//!
+//! A model is its generated variable table (`ModelInfo`) plus a [`Model`] implementation that
+//! turns parameters and inputs into outputs. Everything FMI-specific — the state machine,
+//! value checks against the table, logging, FMU states — lives in [`crate::fmi::instance`].
+
+use super::variables::{Counts, DefaultExperiment, VarInfo, Values};
+use std::path::PathBuf;
+
+/// How a model step failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ModelError {
+    /// The inputs or parameters are invalid: the call returns `fmi2Error`.
+    Error(String),
+    /// The simulation cannot continue (e.g. the wheel has left the profiles): `fmi2Discard`,
+    /// and the instance reports itself terminated at the last successful time.
+    Discard(String),
+}
+
+impl ModelError {
+    pub fn message(&self) -> &str {
+        match self {
+            ModelError::Error(m) | ModelError::Discard(m) => m,
+        }
+    }
+}
+
+impl From<crate::error::InputError> for ModelError {
+    fn from(e: crate::error::InputError) -> Self {
+        ModelError::Error(e.to_string())
+    }
+}
+
+/// Context handed to a model when it is created.
+#[derive(Debug, Clone, Default)]
+pub struct InstanceContext {
+    /// The FMU's `resources/` directory, when the host gave a usable `file:` URI.
+    pub resource_dir: Option<PathBuf>,
+}
+
+/// The physics behind one FMU.
+pub trait Model: Send {
+    /// Called when the parameters are final (leaving initialization mode, after a tunable
+    /// parameter changed, after an FMU state was restored). May allocate workspaces.
+    fn initialize(&mut self, values: &Values) -> Result<(), ModelError>;
+
+    /// Computes all outputs from the current parameters and inputs. Called from `fmi2DoStep`
+    /// and lazily from `fmi2Get*` after inputs changed. Must not allocate.
+    fn evaluate(&mut self, values: &mut Values, time: f64) -> Result<(), ModelError>;
+
+    /// Appends internal state that is not a variable (warm starts) to an FMU state.
+    fn save_state(&self, _out: &mut Vec<u8>) {}
+
+    /// Restores what [`Model::save_state`] wrote (after [`Model::initialize`]).
+    fn restore_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        if bytes.is_empty() {
+            Ok(())
+        } else {
+            Err(format!("unexpected {} bytes of model state", bytes.len()))
+        }
+    }
+}
+
+/// Static description of one FMU: generated table plus constructor.
+pub struct ModelInfo {
+    pub model_identifier: &'static str,
+    pub guid: &'static str,
+    pub model_description_xml: &'static str,
+    pub variables: &'static [VarInfo],
+    pub counts: Counts,
+    pub default_experiment: DefaultExperiment,
+    pub create: fn(&InstanceContext) -> Box<dyn Model>,
+}
+
+impl ModelInfo {
+    /// Looks a variable up by name.
+    pub fn variable(&self, name: &str) -> Option<&'static VarInfo> {
+        self.variables.iter().find(|v| v.name == name)
+    }
+}
+
+impl std::fmt::Debug for ModelInfo {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ModelInfo")
+            .field("model_identifier", &self.model_identifier)
+            .field("guid", &self.guid)
+            .finish()
+    }
+}

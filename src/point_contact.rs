@@ -1,0 +1,128 @@
+//! One elliptic contact point: Hertz normal contact, Kalker's creep coefficients and FASTSIM.
+//!
+//! This is the classic baseline of vehicle dynamics (Kalker 1982; physics.md §2–§4):
+//! * normal problem: Hertz (H1–H4) from the normal force N and the relative curvatures A, B;
+//! * tangential problem: FASTSIM (F1–F4) on the Hertz ellipse, with C11, C22, C23 from Kalker's
+//!   table (K1–K3) for the ellipse's a/b.
+//!
+//! Signs: forces are those of the rail on the wheel, creepages those of the wheel relative to the
+//! rail (`docs/conventions.md`). N = 0 is legal and means no contact: every force is zero.
+//!
+//! Known limits: identical elastic materials for wheel and rail; a single planar contact; the
+//! creep coefficients still describe the ellipse shape at N = 0 (a/b depends on A/B only).
+
+use crate::error::{require_non_negative, require_positive, InputError};
+use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimResult, FastsimSettings};
+use crate::hertz::{contact_modulus, hertz_from_load, shear_modulus, HertzPatch};
+use crate::kalker::{creep_coefficients, CreepCoefficients};
+
+/// Elastic and frictional properties of the wheel–rail pair (identical materials).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Young's modulus E [Pa].
+    pub youngs_modulus: f64,
+    /// Poisson's ratio ν [-], in [0, 0.5].
+    pub poisson_ratio: f64,
+    /// Coefficient of friction μ [-], > 0.
+    pub friction: f64,
+}
+
+impl Material {
+    /// Checks the ranges; returns the error naming the first bad quantity.
+    pub fn validate(&self) -> Result<(), InputError> {
+        require_positive("E", self.youngs_modulus)?;
+        if !(0.0..=0.5).contains(&self.poisson_ratio) {
+            return Err(InputError::new("nu", self.poisson_ratio, "[0, 0.5]"));
+        }
+        require_positive("mu", self.friction)?;
+        Ok(())
+    }
+}
+
+/// Inputs of one contact-point evaluation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointContactInput {
+    /// Normal force N [N], ≥ 0.
+    pub normal_force: f64,
+    /// Relative curvature in the rolling direction A [1/m], > 0.
+    pub curv_a: f64,
+    /// Relative lateral curvature B [1/m], > 0.
+    pub curv_b: f64,
+    /// Rolling speed V [m/s], ≥ 0 (scales the frictional power only).
+    pub rolling_speed: f64,
+    /// Creepages of the wheel relative to the rail.
+    pub creepage: Creepage,
+}
+
+/// Result of one contact-point evaluation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointContactResult {
+    /// The Hertz ellipse (a along the rolling direction).
+    pub patch: HertzPatch,
+    /// Kalker's coefficients for the ellipse's a/b and ν.
+    pub coefficients: CreepCoefficients,
+    /// Creep forces on the wheel, adhesion fraction, frictional power.
+    pub tangential: FastsimResult,
+}
+
+/// Solver for one contact point; owns the FASTSIM buffers, so [`PointContact::solve`] does not
+/// allocate.
+pub struct PointContact {
+    material: Material,
+    fastsim: Fastsim,
+}
+
+impl PointContact {
+    /// Validates the material and sizes the FASTSIM grid.
+    pub fn new(material: Material, settings: FastsimSettings) -> Result<Self, InputError> {
+        material.validate()?;
+        Ok(Self {
+            material,
+            fastsim: Fastsim::new(settings)?,
+        })
+    }
+
+    pub fn material(&self) -> Material {
+        self.material
+    }
+
+    /// The last solve's element tractions.
+    pub fn fastsim(&self) -> &Fastsim {
+        &self.fastsim
+    }
+
+    /// Solves the normal and tangential problems.
+    pub fn solve(&mut self, input: &PointContactInput) -> Result<PointContactResult, InputError> {
+        let m = self.material;
+        require_non_negative("N", input.normal_force)?;
+        require_positive("A", input.curv_a)?;
+        require_positive("B", input.curv_b)?;
+        require_non_negative("V", input.rolling_speed)?;
+        let e_star = contact_modulus(m.youngs_modulus, m.poisson_ratio);
+        let patch = hertz_from_load(input.curv_a, input.curv_b, input.normal_force, e_star)?;
+        // The axis ratio a/b depends on A/B only; at N = 0 take it from a unit-load ellipse so
+        // the coefficients still describe the contact's shape.
+        let shape = if input.normal_force > 0.0 {
+            patch
+        } else {
+            hertz_from_load(input.curv_a, input.curv_b, 1.0, e_star)?
+        };
+        let coefficients = creep_coefficients(shape.a, shape.b, m.poisson_ratio)?;
+        let contact = EllipticContact {
+            a: patch.a,
+            b: patch.b,
+            normal_force: input.normal_force,
+            shear_modulus: shear_modulus(m.youngs_modulus, m.poisson_ratio),
+            nu: m.poisson_ratio,
+            mu: m.friction,
+        };
+        let tangential = self
+            .fastsim
+            .solve(&contact, &input.creepage, input.rolling_speed)?;
+        Ok(PointContactResult {
+            patch,
+            coefficients,
+            tangential,
+        })
+    }
+}
