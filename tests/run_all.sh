@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Runs every test of railcontact (the README's test command; CI runs it through .ci/run):
+#   1. formatting and clippy with warnings as errors;
+#   2. Rust unit and integration tests;
+#   3. packs the FMUs (release build) and runs their default experiments through the C API;
+#   4. the Python host tests (FMPy, libcosimpy) against the packed FMUs.
+# Needs what .ci/setup installs (run `bash .ci/setup` first on a fresh machine).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PYTHON="${PYTHON:-.venv/bin/python}"
+
+echo "== cargo fmt --check"
+cargo fmt --all -- --check
+echo "== cargo clippy"
+cargo clippy --workspace --all-targets -- -D warnings
+echo "== cargo test"
+cargo test --workspace
+echo "== fmu-pack (release build, pack, default experiments)"
+cargo run --release -p fmu-pack
+echo "== Python host tests"
+"$PYTHON" -m pytest tests/python -q
