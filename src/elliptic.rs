@@ -124,7 +124,12 @@ mod tests {
         let m = (1.0 - kp) * (1.0 + kp);
         let r = complete_elliptic_from_complementary(kp);
         let series = std::f64::consts::FRAC_PI_4 * m * (1.0 + 3.0 * m / 8.0);
-        assert!(rel(r.k_minus_e, series) < 1e-9, "{} vs {}", r.k_minus_e, series);
+        assert!(
+            rel(r.k_minus_e, series) < 1e-9,
+            "{} vs {}",
+            r.k_minus_e,
+            series
+        );
     }
 
     #[test]

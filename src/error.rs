@@ -73,7 +73,10 @@ mod tests {
     #[test]
     fn message_names_variable_value_and_range() {
         let e = require_positive("N", -3.0).unwrap_err();
-        assert_eq!(e.to_string(), "N = -3 is outside the allowed range > 0 (finite)");
+        assert_eq!(
+            e.to_string(),
+            "N = -3 is outside the allowed range > 0 (finite)"
+        );
         assert!(require_non_negative("N", 0.0).is_ok());
         assert!(require_finite("xi", f64::NAN).is_err());
         assert!(require_positive("A", f64::INFINITY).is_err());

@@ -389,11 +389,27 @@ mod tests {
         // A a² + B b² = δ holds only at the exact root of H1: checks the solve to 1e−12 across
         // B'/A' = 1 … 1e6 in both orientations.
         let e_star = contact_modulus(210e9, 0.3);
-        for &ratio in &[1.0, 1.0 + 1e-9, 1.001, 1.5, 3.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6] {
+        for &ratio in &[
+            1.0,
+            1.0 + 1e-9,
+            1.001,
+            1.5,
+            3.0,
+            10.0,
+            100.0,
+            1e3,
+            1e4,
+            1e5,
+            1e6,
+        ] {
             for &(ca, cb) in &[(1.0, ratio), (ratio, 1.0)] {
                 let p = hertz_from_load(ca, cb, 5e4, e_star).unwrap();
                 let lhs = ca * p.a * p.a + cb * p.b * p.b;
-                assert!(rel(lhs, p.approach) < 1e-12, "ratio {ratio}: {lhs} vs {}", p.approach);
+                assert!(
+                    rel(lhs, p.approach) < 1e-12,
+                    "ratio {ratio}: {lhs} vs {}",
+                    p.approach
+                );
                 let (ex, ey) = shape_factors(ca, cb).unwrap();
                 assert!((ex + ey - 1.0).abs() < 1e-15);
                 assert!(rel(ex, ca * p.a * p.a / p.approach) < 1e-12);
@@ -420,9 +436,20 @@ mod tests {
         for &(a_over_b, ab, eps_x, ratio) in &table {
             let p = hertz_from_load(a_over_b, 1.0, 1e4, e_star).unwrap();
             let (ex, ey) = shape_factors(a_over_b, 1.0).unwrap();
-            assert!((p.a / p.b - ab).abs() <= 0.5e-3 + 1e-12, "A/B {a_over_b}: a/b {}", p.a / p.b);
-            assert!((ex - eps_x).abs() <= 0.5e-4 + 1e-12, "A/B {a_over_b}: eps_x {ex}");
-            assert!((ex / ey - ratio).abs() <= 0.5e-3 + 1e-12, "A/B {a_over_b}: {}", ex / ey);
+            assert!(
+                (p.a / p.b - ab).abs() <= 0.5e-3 + 1e-12,
+                "A/B {a_over_b}: a/b {}",
+                p.a / p.b
+            );
+            assert!(
+                (ex - eps_x).abs() <= 0.5e-4 + 1e-12,
+                "A/B {a_over_b}: eps_x {ex}"
+            );
+            assert!(
+                (ex / ey - ratio).abs() <= 0.5e-3 + 1e-12,
+                "A/B {a_over_b}: {}",
+                ex / ey
+            );
         }
     }
 
@@ -444,10 +471,14 @@ mod tests {
             (5.0, 0.02119, 11.238, 0.2381, 0.2969),
         ];
         for &(theta_deg, g, m, n, r) in &table {
-            let c = (theta_deg as f64).to_radians().cos();
+            let c = f64::to_radians(theta_deg).cos();
             let ratio = (1.0 + c) / (1.0 - c);
             let sol = solve_axis_ratio(ratio).unwrap();
-            assert!((sol.g - g).abs() <= 0.5e-5 + 1e-12, "θ {theta_deg}: g {}", sol.g);
+            assert!(
+                (sol.g - g).abs() <= 0.5e-5 + 1e-12,
+                "θ {theta_deg}: g {}",
+                sol.g
+            );
             let (mm, nn, rr) = mnr_coefficients(1.0, ratio).unwrap();
             let tol = |v: f64| if v >= 10.0 { 0.5e-3 } else { 0.5e-4 } + 1e-12;
             assert!((mm - m).abs() <= tol(m), "θ {theta_deg}: m {mm}");
@@ -494,10 +525,20 @@ mod tests {
     fn approach_inverts_load() {
         // H5 inverts H2–H3 (same g, same integrals): round trip to rounding, across shapes.
         let e_star = contact_modulus(210e9, 0.28);
-        for &(ca, cb) in &[(0.8464, 2.406), (2.406, 0.8464), (1.0, 1.0), (1.0, 1e5), (3e4, 0.3)] {
+        for &(ca, cb) in &[
+            (0.8464, 2.406),
+            (2.406, 0.8464),
+            (1.0, 1.0),
+            (1.0, 1e5),
+            (3e4, 0.3),
+        ] {
             let p = hertz_from_load(ca, cb, 82e3, e_star).unwrap();
             let q = hertz_from_approach(ca, cb, p.approach, e_star).unwrap();
-            assert!(rel(q.normal_force, 82e3) < 1e-13, "{ca},{cb}: {}", q.normal_force);
+            assert!(
+                rel(q.normal_force, 82e3) < 1e-13,
+                "{ca},{cb}: {}",
+                q.normal_force
+            );
             assert!(rel(q.a, p.a) < 1e-13 && rel(q.b, p.b) < 1e-13 && rel(q.p0, p.p0) < 1e-13);
         }
     }
@@ -520,16 +561,51 @@ mod tests {
     #[test]
     fn zero_load_and_invalid_inputs() {
         let e_star = contact_modulus(210e9, 0.3);
-        assert_eq!(hertz_from_load(1.0, 2.0, 0.0, e_star).unwrap(), HertzPatch::default());
-        assert_eq!(hertz_from_approach(1.0, 2.0, 0.0, e_star).unwrap(), HertzPatch::default());
-        assert_eq!(hertz_from_load(0.0, 2.0, 1.0, e_star).unwrap_err().name, "A");
-        assert_eq!(hertz_from_load(-1.0, 2.0, 1.0, e_star).unwrap_err().name, "A");
-        assert_eq!(hertz_from_load(1.0, f64::NAN, 1.0, e_star).unwrap_err().name, "B");
-        assert_eq!(hertz_from_load(1.0, f64::INFINITY, 1.0, e_star).unwrap_err().name, "B");
-        assert_eq!(hertz_from_load(1.0, 2.0, -1.0, e_star).unwrap_err().name, "N");
-        assert_eq!(hertz_from_load(1.0, 2.0, f64::NAN, e_star).unwrap_err().name, "N");
+        assert_eq!(
+            hertz_from_load(1.0, 2.0, 0.0, e_star).unwrap(),
+            HertzPatch::default()
+        );
+        assert_eq!(
+            hertz_from_approach(1.0, 2.0, 0.0, e_star).unwrap(),
+            HertzPatch::default()
+        );
+        assert_eq!(
+            hertz_from_load(0.0, 2.0, 1.0, e_star).unwrap_err().name,
+            "A"
+        );
+        assert_eq!(
+            hertz_from_load(-1.0, 2.0, 1.0, e_star).unwrap_err().name,
+            "A"
+        );
+        assert_eq!(
+            hertz_from_load(1.0, f64::NAN, 1.0, e_star)
+                .unwrap_err()
+                .name,
+            "B"
+        );
+        assert_eq!(
+            hertz_from_load(1.0, f64::INFINITY, 1.0, e_star)
+                .unwrap_err()
+                .name,
+            "B"
+        );
+        assert_eq!(
+            hertz_from_load(1.0, 2.0, -1.0, e_star).unwrap_err().name,
+            "N"
+        );
+        assert_eq!(
+            hertz_from_load(1.0, 2.0, f64::NAN, e_star)
+                .unwrap_err()
+                .name,
+            "N"
+        );
         assert_eq!(hertz_from_load(1.0, 2.0, 1.0, 0.0).unwrap_err().name, "E*");
-        assert_eq!(hertz_from_approach(1.0, 2.0, -1e-6, e_star).unwrap_err().name, "delta");
+        assert_eq!(
+            hertz_from_approach(1.0, 2.0, -1e-6, e_star)
+                .unwrap_err()
+                .name,
+            "delta"
+        );
         assert_eq!(shape_factors(1.0, -2.0).unwrap_err().name, "B");
         // Ratio beyond the supported range: an error, not NaN.
         assert!(hertz_from_load(1.0, 1e13, 1.0, e_star).is_err());

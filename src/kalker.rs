@@ -65,12 +65,30 @@ const TABLE_MIN_G: f64 = 0.1;
 /// Smallest accepted minor/major ratio (see module header).
 const MIN_RATIO: f64 = 1e-9;
 
-/// Table E.3, a ≤ b, rows g = a/b = 0.1, 0.2, …, 1.0 (physics.md §3.1).
+/// Table E.3, a ≤ b, rows g = a/b = 0.1, 0.2, …, 1.0 (physics.md §3.1). (The cell value 3.14 is
+/// a creep coefficient, not π.)
+#[allow(clippy::approx_constant)]
 const TABLE_A_LE_B: [TableRow; 10] = [
-    row([2.51, 3.31, 4.85], [2.51, 2.52, 2.53], [0.334, 0.473, 0.731]),
-    row([2.59, 3.37, 4.81], [2.59, 2.63, 2.66], [0.483, 0.603, 0.809]),
-    row([2.68, 3.44, 4.80], [2.68, 2.75, 2.81], [0.607, 0.715, 0.889]),
-    row([2.78, 3.53, 4.82], [2.78, 2.88, 2.98], [0.720, 0.823, 0.977]),
+    row(
+        [2.51, 3.31, 4.85],
+        [2.51, 2.52, 2.53],
+        [0.334, 0.473, 0.731],
+    ),
+    row(
+        [2.59, 3.37, 4.81],
+        [2.59, 2.63, 2.66],
+        [0.483, 0.603, 0.809],
+    ),
+    row(
+        [2.68, 3.44, 4.80],
+        [2.68, 2.75, 2.81],
+        [0.607, 0.715, 0.889],
+    ),
+    row(
+        [2.78, 3.53, 4.82],
+        [2.78, 2.88, 2.98],
+        [0.720, 0.823, 0.977],
+    ),
     row([2.88, 3.62, 4.83], [2.88, 3.01, 3.14], [0.827, 0.929, 1.07]),
     row([2.98, 3.72, 4.91], [2.98, 3.14, 3.31], [0.930, 1.03, 1.18]),
     row([3.09, 3.81, 4.97], [3.09, 3.28, 3.48], [1.03, 1.14, 1.29]),
@@ -99,12 +117,14 @@ const TABLE_A_GE_B: [TableRow; 10] = [
 /// The Poisson ratios of the table columns.
 const TABLE_NU: [f64; 3] = [0.0, 0.25, 0.5];
 
-/// K1 weights w0, w1, w2 of the quadratic Lagrange interpolation through ν = 0, 0.25, 0.5.
+/// K1 weights of the quadratic Lagrange interpolation through the ν nodes 0, 0.25, 0.5:
+/// w0 = (ν − 0.25)(ν − 0.5)/0.125, w1 = −ν(ν − 0.5)/0.0625, w2 = ν(ν − 0.25)/0.125.
 fn k1_weights(nu: f64) -> [f64; 3] {
+    let [n0, n1, n2] = TABLE_NU;
     [
-        (nu - 0.25) * (nu - 0.5) / 0.125,
-        -nu * (nu - 0.5) / 0.0625,
-        nu * (nu - 0.25) / 0.125,
+        (nu - n1) * (nu - n2) / ((n0 - n1) * (n0 - n2)),
+        (nu - n0) * (nu - n2) / ((n1 - n0) * (n1 - n2)),
+        (nu - n0) * (nu - n1) / ((n2 - n0) * (n2 - n1)),
     ]
 }
 
@@ -127,16 +147,16 @@ fn interpolate_rows(table: &[TableRow; 10], g: f64) -> TableRow {
             a[2] + t * (b[2] - a[2]),
         ]
     };
-    row(lerp(lo.c11, hi.c11), lerp(lo.c22, hi.c22), lerp(lo.c23, hi.c23))
+    row(
+        lerp(lo.c11, hi.c11),
+        lerp(lo.c22, hi.c22),
+        lerp(lo.c23, hi.c23),
+    )
 }
 
 /// Table E.3 + K1 for g ∈ [0.1, 1]; `a_le_b` selects the half of the table.
 fn tabulated(g: f64, a_le_b: bool, nu: f64) -> CreepCoefficients {
-    let table = if a_le_b {
-        &TABLE_A_LE_B
-    } else {
-        &TABLE_A_GE_B
-    };
+    let table = if a_le_b { &TABLE_A_LE_B } else { &TABLE_A_GE_B };
     let r = interpolate_rows(table, g);
     CreepCoefficients {
         c11: interpolate_in_nu(r.c11, nu),
@@ -201,7 +221,8 @@ pub fn creep_coefficients(a: f64, b: f64, nu: f64) -> Result<CreepCoefficients, 
     }
     let a_le_b = a <= b;
     let g = if a_le_b { a / b } else { b / a };
-    if !(g >= MIN_RATIO) {
+    // a, b are finite and positive, so g is a positive number (possibly underflowed to 0).
+    if g < MIN_RATIO {
         return Err(InputError::new("a/b", a / b, "[1e-9, 1e9]"));
     }
     Ok(if g >= TABLE_MIN_G {
@@ -266,7 +287,10 @@ mod tests {
             for inu in 0..3 {
                 let (x, c) = full_column(which, inu);
                 let k = max_log_curvature(&x, &c);
-                assert!(k < SMOOTHNESS_BOUND, "coefficient {which}, ν column {inu}: {k}");
+                assert!(
+                    k < SMOOTHNESS_BOUND,
+                    "coefficient {which}, ν column {inu}: {k}"
+                );
             }
         }
     }
@@ -309,6 +333,18 @@ mod tests {
     }
 
     #[test]
+    fn k1_weights_match_the_brief() {
+        // physics.md §3.2 writes the weights with the constants 0.125 and 0.0625; same values.
+        for &nu in &[0.0, 0.1, 0.25, 0.28, 0.4, 0.5] {
+            let w = k1_weights(nu);
+            assert!((w[0] - (nu - 0.25) * (nu - 0.5) / 0.125).abs() < 1e-15);
+            assert!((w[1] + nu * (nu - 0.5) / 0.0625).abs() < 1e-15);
+            assert!((w[2] - nu * (nu - 0.25) / 0.125).abs() < 1e-15);
+            assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+        }
+    }
+
+    #[test]
     fn k1_check_value() {
         // physics.md §3.2: a/b = 2, ν = 0.28 → 5.2037, 4.9715, 2.6566 (4 decimals printed).
         let c = creep_coefficients(8e-3, 4e-3, 0.28).unwrap();
@@ -340,7 +376,11 @@ mod tests {
             (asymptote_narrow(0.1, 0.0), &TABLE_A_LE_B[0]),
             (asymptote_long(0.1, 0.0), &TABLE_A_GE_B[0]),
         ] {
-            for (x, t) in [(asym.c11, r.c11[0]), (asym.c22, r.c22[0]), (asym.c23, r.c23[0])] {
+            for (x, t) in [
+                (asym.c11, r.c11[0]),
+                (asym.c22, r.c22[0]),
+                (asym.c23, r.c23[0]),
+            ] {
                 assert!(((x - t) / t).abs() < 0.03, "{x} vs {t}");
             }
         }
@@ -360,7 +400,10 @@ mod tests {
                 };
                 let (lo, hi) = (at(0.1 - 1e-9), at(0.1 + 1e-9));
                 for (x, y) in [(lo.c11, hi.c11), (lo.c22, hi.c22), (lo.c23, hi.c23)] {
-                    assert!(((x - y) / y).abs() < 1e-6, "ν {nu}, a≤b {a_le_b}: {x} vs {y}");
+                    assert!(
+                        ((x - y) / y).abs() < 1e-6,
+                        "ν {nu}, a≤b {a_le_b}: {x} vs {y}"
+                    );
                 }
             }
         }
@@ -419,9 +462,17 @@ mod tests {
     fn invalid_inputs() {
         assert_eq!(creep_coefficients(1.0, 1.0, -0.01).unwrap_err().name, "nu");
         assert_eq!(creep_coefficients(1.0, 1.0, 0.51).unwrap_err().name, "nu");
-        assert_eq!(creep_coefficients(1.0, 1.0, f64::NAN).unwrap_err().name, "nu");
+        assert_eq!(
+            creep_coefficients(1.0, 1.0, f64::NAN).unwrap_err().name,
+            "nu"
+        );
         assert_eq!(creep_coefficients(0.0, 1.0, 0.3).unwrap_err().name, "a");
-        assert_eq!(creep_coefficients(1.0, f64::INFINITY, 0.3).unwrap_err().name, "b");
+        assert_eq!(
+            creep_coefficients(1.0, f64::INFINITY, 0.3)
+                .unwrap_err()
+                .name,
+            "b"
+        );
         assert_eq!(creep_coefficients(1e-10, 1.0, 0.3).unwrap_err().name, "a/b");
         assert!(creep_coefficients(1.0, 1.0, 0.0).is_ok());
         assert!(creep_coefficients(1.0, 1.0, 0.5).is_ok());

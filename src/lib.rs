@@ -16,6 +16,7 @@ pub mod fastsim;
 pub mod hertz;
 pub mod kalker;
 pub mod point_contact;
+pub mod profile;
 
 pub mod fmi;
 pub mod models;

@@ -100,7 +100,10 @@ impl Fmu {
     fn init(&self) {
         // SAFETY: live instance.
         unsafe {
-            assert_eq!(fmi2SetupExperiment(self.c, 0, 0.0, 0.0, 0, 0.0), fmi2Status_fmi2OK);
+            assert_eq!(
+                fmi2SetupExperiment(self.c, 0, 0.0, 0.0, 0, 0.0),
+                fmi2Status_fmi2OK
+            );
             assert_eq!(fmi2EnterInitializationMode(self.c), fmi2Status_fmi2OK);
             assert_eq!(fmi2ExitInitializationMode(self.c), fmi2Status_fmi2OK);
         }
@@ -170,7 +173,10 @@ fn rejected_value_names_variable_value_and_range_and_keeps_the_old_value() {
         "mu = inf is outside the allowed range > 0 (finite)",
         "nx = 0 is outside the allowed range integer in [1, 1000]",
     ] {
-        assert!(m.iter().any(|x| x.contains(want)), "missing {want:?} in {m:?}");
+        assert!(
+            m.iter().any(|x| x.contains(want)),
+            "missing {want:?} in {m:?}"
+        );
     }
     f.init();
     assert_eq!(f.get("N"), 82000.0, "rejected value must not be stored");
@@ -181,9 +187,17 @@ fn rejected_value_names_variable_value_and_range_and_keeps_the_old_value() {
 #[test]
 fn call_order_misuse_is_an_error() {
     let f = Fmu::new("misuse");
-    assert_eq!(f.step(0.0, 1e-3), fmi2Status_fmi2Error, "DoStep before init");
+    assert_eq!(
+        f.step(0.0, 1e-3),
+        fmi2Status_fmi2Error,
+        "DoStep before init"
+    );
     f.init();
-    assert_eq!(f.set("E", 2.0e11), fmi2Status_fmi2Error, "fixed parameter after init");
+    assert_eq!(
+        f.set("E", 2.0e11),
+        fmi2Status_fmi2Error,
+        "fixed parameter after init"
+    );
     assert_eq!(f.step(0.0, 0.0), fmi2Status_fmi2Error, "zero step");
     let unknown = 10_000u32;
     let mut x = 0.0;
@@ -201,8 +215,16 @@ fn call_order_misuse_is_an_error() {
     // Still usable after the rejected calls.
     assert_eq!(f.step(0.0, 1e-3), fmi2Status_fmi2OK);
     let m = messages("misuse");
-    assert!(m.iter().any(|x| x.contains("unknown value reference 10000")), "{m:?}");
-    assert!(m.iter().any(|x| x.contains("E (Parameter, Fixed) cannot be set")), "{m:?}");
+    assert!(
+        m.iter()
+            .any(|x| x.contains("unknown value reference 10000")),
+        "{m:?}"
+    );
+    assert!(
+        m.iter()
+            .any(|x| x.contains("E (Parameter, Fixed) cannot be set")),
+        "{m:?}"
+    );
 }
 
 #[test]
@@ -238,7 +260,11 @@ fn reset_returns_to_start_values() {
     assert_eq!(f.step(0.0, 1e-3), fmi2Status_fmi2OK);
     // SAFETY: live instance.
     assert_eq!(unsafe { fmi2Reset(f.c) }, fmi2Status_fmi2OK);
-    assert_eq!(f.set("E", 2.0e11), fmi2Status_fmi2OK, "parameters settable again");
+    assert_eq!(
+        f.set("E", 2.0e11),
+        fmi2Status_fmi2OK,
+        "parameters settable again"
+    );
     f.init();
     assert_eq!(f.get("N"), 82000.0);
     assert_eq!(f.step(0.0, 1e-3), fmi2Status_fmi2OK);
@@ -259,20 +285,34 @@ fn fmu_state_round_trip_is_bit_exact_and_corruption_is_rejected() {
     }
     let mut state: fmi2FMUstate = std::ptr::null_mut();
     // SAFETY: live instance, state slot initialised to NULL.
-    assert_eq!(unsafe { fmi2GetFMUstate(f.c, &mut state) }, fmi2Status_fmi2OK);
+    assert_eq!(
+        unsafe { fmi2GetFMUstate(f.c, &mut state) },
+        fmi2Status_fmi2OK
+    );
     let first: Vec<Vec<f64>> = (3..8).map(drive).collect();
     // SAFETY: state created above.
     assert_eq!(unsafe { fmi2SetFMUstate(f.c, state) }, fmi2Status_fmi2OK);
     let again: Vec<Vec<f64>> = (3..8).map(drive).collect();
     assert_eq!(
-        first.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>(),
-        again.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>()
+        first
+            .iter()
+            .flatten()
+            .map(|x| x.to_bits())
+            .collect::<Vec<_>>(),
+        again
+            .iter()
+            .flatten()
+            .map(|x| x.to_bits())
+            .collect::<Vec<_>>()
     );
 
     // Serialize, deserialize into a new state, restore: same again.
     let mut size = 0usize;
     // SAFETY: valid state and out pointer.
-    assert_eq!(unsafe { fmi2SerializedFMUstateSize(f.c, state, &mut size) }, fmi2Status_fmi2OK);
+    assert_eq!(
+        unsafe { fmi2SerializedFMUstateSize(f.c, state, &mut size) },
+        fmi2Status_fmi2OK
+    );
     let mut bytes = vec![0 as fmi2Byte; size];
     // SAFETY: buffer of `size` bytes.
     assert_eq!(
@@ -337,7 +377,10 @@ fn generated_model_description_matches_the_table() {
     let xml = generated::MODEL_DESCRIPTION_XML;
     assert!(xml.contains(&format!("guid=\"{}\"", INFO.guid)));
     assert!(xml.contains("modelIdentifier=\"HertzContact\""));
-    assert_eq!(xml.matches("<ScalarVariable ").count(), INFO.variables.len());
+    assert_eq!(
+        xml.matches("<ScalarVariable ").count(),
+        INFO.variables.len()
+    );
     for v in INFO.variables {
         assert!(
             xml.contains(&format!("name=\"{}\" valueReference=\"{}\"", v.name, v.vr)),
@@ -347,8 +390,16 @@ fn generated_model_description_matches_the_table() {
         if v.causality == railcontact::fmi::variables::Causality::Output {
             // ModelStructure indices are 1-based positions in ModelVariables.
             let unknown = format!("<Unknown index=\"{}\"/>", v.vr + 1);
-            assert_eq!(xml.matches(&unknown).count(), 2, "{} in Outputs and InitialUnknowns", v.name);
+            assert_eq!(
+                xml.matches(&unknown).count(),
+                2,
+                "{} in Outputs and InitialUnknowns",
+                v.name
+            );
         }
     }
-    assert!(!xml.contains("<Derivatives"), "stateless CS FMU must not declare Derivatives");
+    assert!(
+        !xml.contains("<Derivatives"),
+        "stateless CS FMU must not declare Derivatives"
+    );
 }

@@ -38,7 +38,12 @@ impl log::Log for StderrLog {
         true
     }
     fn log(&self, record: &log::Record<'_>) {
-        eprintln!("  [{} {}] {}", record.level(), record.target(), record.args());
+        eprintln!(
+            "  [{} {}] {}",
+            record.level(),
+            record.target(),
+            record.args()
+        );
     }
     fn flush(&self) {}
 }
@@ -50,10 +55,18 @@ fn unzip(fmu: &Path, dir: &Path) -> Result<(), String> {
     for i in 0..archive.len() {
         let mut entry = archive.by_index(i).map_err(|e| e.to_string())?;
         if entry.compression() != zip::CompressionMethod::Deflated {
-            return Err(format!("{}: entry {} is not deflated", fmu.display(), entry.name()));
+            return Err(format!(
+                "{}: entry {} is not deflated",
+                fmu.display(),
+                entry.name()
+            ));
         }
         let Some(rel) = entry.enclosed_name() else {
-            return Err(format!("{}: unsafe entry name {}", fmu.display(), entry.name()));
+            return Err(format!(
+                "{}: unsafe entry name {}",
+                fmu.display(),
+                entry.name()
+            ));
         };
         let path = dir.join(rel);
         if let Some(parent) = path.parent() {
@@ -111,8 +124,14 @@ fn check_exports(b: &Fmi2Binding) -> Result<(), String> {
         ("fmi2Instantiate", b.fmi2Instantiate.is_ok()),
         ("fmi2FreeInstance", b.fmi2FreeInstance.is_ok()),
         ("fmi2SetupExperiment", b.fmi2SetupExperiment.is_ok()),
-        ("fmi2EnterInitializationMode", b.fmi2EnterInitializationMode.is_ok()),
-        ("fmi2ExitInitializationMode", b.fmi2ExitInitializationMode.is_ok()),
+        (
+            "fmi2EnterInitializationMode",
+            b.fmi2EnterInitializationMode.is_ok(),
+        ),
+        (
+            "fmi2ExitInitializationMode",
+            b.fmi2ExitInitializationMode.is_ok(),
+        ),
         ("fmi2Terminate", b.fmi2Terminate.is_ok()),
         ("fmi2Reset", b.fmi2Reset.is_ok()),
         ("fmi2GetReal", b.fmi2GetReal.is_ok()),
@@ -126,12 +145,24 @@ fn check_exports(b: &Fmi2Binding) -> Result<(), String> {
         ("fmi2GetFMUstate", b.fmi2GetFMUstate.is_ok()),
         ("fmi2SetFMUstate", b.fmi2SetFMUstate.is_ok()),
         ("fmi2FreeFMUstate", b.fmi2FreeFMUstate.is_ok()),
-        ("fmi2SerializedFMUstateSize", b.fmi2SerializedFMUstateSize.is_ok()),
+        (
+            "fmi2SerializedFMUstateSize",
+            b.fmi2SerializedFMUstateSize.is_ok(),
+        ),
         ("fmi2SerializeFMUstate", b.fmi2SerializeFMUstate.is_ok()),
         ("fmi2DeSerializeFMUstate", b.fmi2DeSerializeFMUstate.is_ok()),
-        ("fmi2GetDirectionalDerivative", b.fmi2GetDirectionalDerivative.is_ok()),
-        ("fmi2SetRealInputDerivatives", b.fmi2SetRealInputDerivatives.is_ok()),
-        ("fmi2GetRealOutputDerivatives", b.fmi2GetRealOutputDerivatives.is_ok()),
+        (
+            "fmi2GetDirectionalDerivative",
+            b.fmi2GetDirectionalDerivative.is_ok(),
+        ),
+        (
+            "fmi2SetRealInputDerivatives",
+            b.fmi2SetRealInputDerivatives.is_ok(),
+        ),
+        (
+            "fmi2GetRealOutputDerivatives",
+            b.fmi2GetRealOutputDerivatives.is_ok(),
+        ),
         ("fmi2DoStep", b.fmi2DoStep.is_ok()),
         ("fmi2CancelStep", b.fmi2CancelStep.is_ok()),
         ("fmi2GetStatus", b.fmi2GetStatus.is_ok()),
@@ -157,17 +188,21 @@ pub fn run_default_experiment(info: &ModelInfo, fmu: &Path, run_root: &Path) -> 
     let dir = run_root.join(id);
     let _ = std::fs::remove_dir_all(&dir);
     unzip(fmu, &dir)?;
-    let xml = std::fs::read_to_string(dir.join("modelDescription.xml")).map_err(|e| e.to_string())?;
+    let xml =
+        std::fs::read_to_string(dir.join("modelDescription.xml")).map_err(|e| e.to_string())?;
     let (guid, vrs) = parse_model_description(&xml)?;
     for v in info.variables {
         if vrs.get(v.name) != Some(&v.vr) {
-            return Err(format!("{id}: {} has a different value reference in the XML", v.name));
+            return Err(format!(
+                "{id}: {} has a different value reference in the XML",
+                v.name
+            ));
         }
     }
     let library = dir.join("binaries/linux64").join(format!("{id}.so"));
     // SAFETY: loading our own freshly built library.
-    let b = unsafe { Fmi2Binding::new(&library) }
-        .map_err(|e| format!("{}: {e}", library.display()))?;
+    let b =
+        unsafe { Fmi2Binding::new(&library) }.map_err(|e| format!("{}: {e}", library.display()))?;
     check_exports(&b)?;
     let Some(demo) = demo(id) else {
         println!("{id}: no default experiment defined in fmu-pack");
@@ -179,13 +214,18 @@ pub fn run_default_experiment(info: &ModelInfo, fmu: &Path, run_root: &Path) -> 
             .ok_or_else(|| format!("{id}: no variable {name}"))
     };
     let sweep_vr = vr(demo.sweep)?;
-    let column_vrs: Vec<u32> = demo.columns.iter().map(|c| vr(c)).collect::<Result<_, _>>()?;
+    let column_vrs: Vec<u32> = demo
+        .columns
+        .iter()
+        .map(|c| vr(c))
+        .collect::<Result<_, _>>()?;
 
     let resources = dir.join("resources");
     std::fs::create_dir_all(&resources).map_err(|e| e.to_string())?;
     let c_name = CString::new(id).expect("identifier");
     let c_guid = CString::new(guid).map_err(|e| e.to_string())?;
-    let c_uri = CString::new(format!("file://{}", resources.display())).map_err(|e| e.to_string())?;
+    let c_uri =
+        CString::new(format!("file://{}", resources.display())).map_err(|e| e.to_string())?;
     let callbacks = fmi2CallbackFunctions {
         logger: Some(fmi_sys::fmi2::logger::callback_logger_handler),
         allocateMemory: None,
@@ -194,12 +234,17 @@ pub fn run_default_experiment(info: &ModelInfo, fmu: &Path, run_root: &Path) -> 
         componentEnvironment: std::ptr::null_mut(),
     };
     let de = info.default_experiment;
-    let steps = ((de.stop_time - de.start_time) / de.step_size).round().max(1.0) as usize;
+    let steps = ((de.stop_time - de.start_time) / de.step_size)
+        .round()
+        .max(1.0) as usize;
     // SAFETY: FMI calls with valid pointers on a library whose exports were checked above.
     unsafe {
         let platform = CStr::from_ptr(b.fmi2GetTypesPlatform()).to_string_lossy();
         let version = CStr::from_ptr(b.fmi2GetVersion()).to_string_lossy();
-        println!("{id}: types platform {platform:?}, FMI version {version}, {steps} steps of {} s", de.step_size);
+        println!(
+            "{id}: types platform {platform:?}, FMI version {version}, {steps} steps of {} s",
+            de.step_size
+        );
         let c = b.fmi2Instantiate(
             c_name.as_ptr(),
             fmi2Type_fmi2CoSimulation,
@@ -213,10 +258,19 @@ pub fn run_default_experiment(info: &ModelInfo, fmu: &Path, run_root: &Path) -> 
             return Err(format!("{id}: fmi2Instantiate returned NULL"));
         }
         let result = (|| {
-            check(b.fmi2SetupExperiment(c, 0, 0.0, de.start_time, 1, de.stop_time), "fmi2SetupExperiment")?;
-            check(b.fmi2EnterInitializationMode(c), "fmi2EnterInitializationMode")?;
+            check(
+                b.fmi2SetupExperiment(c, 0, 0.0, de.start_time, 1, de.stop_time),
+                "fmi2SetupExperiment",
+            )?;
+            check(
+                b.fmi2EnterInitializationMode(c),
+                "fmi2EnterInitializationMode",
+            )?;
             check(b.fmi2SetReal(c, &sweep_vr, 1, &demo.from), "fmi2SetReal")?;
-            check(b.fmi2ExitInitializationMode(c), "fmi2ExitInitializationMode")?;
+            check(
+                b.fmi2ExitInitializationMode(c),
+                "fmi2ExitInitializationMode",
+            )?;
             print!("{:>10} {:>12}", "t [s]", demo.sweep);
             for col in demo.columns {
                 print!(" {col:>16}");
@@ -228,7 +282,10 @@ pub fn run_default_experiment(info: &ModelInfo, fmu: &Path, run_root: &Path) -> 
                 let value = demo.from + (demo.to - demo.from) * (k + 1) as f64 / steps as f64;
                 check(b.fmi2SetReal(c, &sweep_vr, 1, &value), "fmi2SetReal")?;
                 check(b.fmi2DoStep(c, t, de.step_size, 1), "fmi2DoStep")?;
-                check(b.fmi2GetReal(c, column_vrs.as_ptr(), column_vrs.len(), row.as_mut_ptr()), "fmi2GetReal")?;
+                check(
+                    b.fmi2GetReal(c, column_vrs.as_ptr(), column_vrs.len(), row.as_mut_ptr()),
+                    "fmi2GetReal",
+                )?;
                 print!("{:>10.4} {value:>12.4e}", t + de.step_size);
                 for x in &row {
                     if !x.is_finite() {

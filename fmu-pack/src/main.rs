@@ -79,9 +79,7 @@ fn run() -> Result<(), String> {
             library.display()
         ));
     }
-    let out_dir = options
-        .out_dir
-        .unwrap_or_else(|| target_dir().join("fmu"));
+    let out_dir = options.out_dir.unwrap_or_else(|| target_dir().join("fmu"));
     std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
     for info in railcontact::models::MODELS {
         let fmu = out_dir.join(format!("{}.fmu", info.model_identifier));

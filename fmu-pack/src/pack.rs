@@ -25,10 +25,7 @@ pub fn write_fmu(info: &ModelInfo, library: &Path, fmu: &Path) -> Result<(), Str
             format!("binaries/linux64/{}.so", info.model_identifier),
             &binary,
         ),
-        (
-            "documentation/index.html".to_string(),
-            html.as_bytes(),
-        ),
+        ("documentation/index.html".to_string(), html.as_bytes()),
     ];
     for (name, bytes) in entries {
         let opts = if name.ends_with(".so") {

@@ -146,13 +146,18 @@ pub unsafe extern "C" fn fmi2Instantiate(
             loggingOn != 0,
         );
         if name.is_empty() {
-            logger.log(ERROR, "fmi2Instantiate: instanceName must be a non-empty string");
+            logger.log(
+                ERROR,
+                "fmi2Instantiate: instanceName must be a non-empty string",
+            );
             return std::ptr::null_mut();
         }
         if fmuType != fmi2Type_fmi2CoSimulation {
             logger.log(
                 ERROR,
-                &format!("fmi2Instantiate: fmuType = {fmuType}: only Co-Simulation (1) is supported"),
+                &format!(
+                    "fmi2Instantiate: fmuType = {fmuType}: only Co-Simulation (1) is supported"
+                ),
             );
             return std::ptr::null_mut();
         }
@@ -209,7 +214,12 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     categories: *const fmi2String,
 ) -> fmi2Status {
     with_instance(c, "fmi2SetDebugLogging", mask::SET_DEBUG_LOGGING, |inst| {
-        if null_args(inst, "fmi2SetDebugLogging", nCategories, &[categories.is_null()]) {
+        if null_args(
+            inst,
+            "fmi2SetDebugLogging",
+            nCategories,
+            &[categories.is_null()],
+        ) {
             return ERROR;
         }
         // SAFETY: checked non-null for n > 0.
@@ -323,7 +333,12 @@ pub unsafe extern "C" fn fmi2GetInteger(
     value: *mut fmi2Integer,
 ) -> fmi2Status {
     with_instance(c, "fmi2GetInteger", mask::GET, |inst| {
-        if null_args(inst, "fmi2GetInteger", nvr, &[vr.is_null(), value.is_null()]) {
+        if null_args(
+            inst,
+            "fmi2GetInteger",
+            nvr,
+            &[vr.is_null(), value.is_null()],
+        ) {
             return ERROR;
         }
         // SAFETY: checked non-null, host owns nvr elements.
@@ -343,12 +358,19 @@ pub unsafe extern "C" fn fmi2GetBoolean(
     value: *mut fmi2Boolean,
 ) -> fmi2Status {
     with_instance(c, "fmi2GetBoolean", mask::GET, |inst| {
-        if null_args(inst, "fmi2GetBoolean", nvr, &[vr.is_null(), value.is_null()]) {
+        if null_args(
+            inst,
+            "fmi2GetBoolean",
+            nvr,
+            &[vr.is_null(), value.is_null()],
+        ) {
             return ERROR;
         }
         // SAFETY: checked non-null, host owns nvr elements.
         let (vrs, out) = unsafe { (slice(vr, nvr), slice_mut(value, nvr)) };
-        inst.get(VarType::Boolean, vrs, out, |v, s| fmi2Boolean::from(v.booleans[s]))
+        inst.get(VarType::Boolean, vrs, out, |v, s| {
+            fmi2Boolean::from(v.booleans[s])
+        })
     })
 }
 const _: fmi2GetBooleanTYPE = Some(fmi2GetBoolean);
@@ -417,7 +439,12 @@ pub unsafe extern "C" fn fmi2SetInteger(
     value: *const fmi2Integer,
 ) -> fmi2Status {
     with_instance(c, "fmi2SetInteger", mask::SET, |inst| {
-        if null_args(inst, "fmi2SetInteger", nvr, &[vr.is_null(), value.is_null()]) {
+        if null_args(
+            inst,
+            "fmi2SetInteger",
+            nvr,
+            &[vr.is_null(), value.is_null()],
+        ) {
             return ERROR;
         }
         // SAFETY: checked non-null, host owns nvr elements.
@@ -443,7 +470,12 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     value: *const fmi2Boolean,
 ) -> fmi2Status {
     with_instance(c, "fmi2SetBoolean", mask::SET, |inst| {
-        if null_args(inst, "fmi2SetBoolean", nvr, &[vr.is_null(), value.is_null()]) {
+        if null_args(
+            inst,
+            "fmi2SetBoolean",
+            nvr,
+            &[vr.is_null(), value.is_null()],
+        ) {
             return ERROR;
         }
         // SAFETY: checked non-null, host owns nvr elements.
@@ -508,7 +540,10 @@ impl std::fmt::Display for StringArg {
 /// # Safety
 /// FMI 2.0 host contract: `FMUstate` points to NULL or to a state of this library.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetFMUstate(
+    c: fmi2Component,
+    FMUstate: *mut fmi2FMUstate,
+) -> fmi2Status {
     with_instance(c, "fmi2GetFMUstate", mask::FMU_STATE, |inst| {
         if FMUstate.is_null() {
             return inst.error("fmi2GetFMUstate: FMUstate is NULL");
@@ -549,7 +584,10 @@ const _: fmi2SetFMUstateTYPE = Some(fmi2SetFMUstate);
 /// # Safety
 /// FMI 2.0 host contract.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+pub unsafe extern "C" fn fmi2FreeFMUstate(
+    c: fmi2Component,
+    FMUstate: *mut fmi2FMUstate,
+) -> fmi2Status {
     with_instance(c, "fmi2FreeFMUstate", mask::FMU_STATE, |_inst| {
         if FMUstate.is_null() {
             return OK;
@@ -685,7 +723,11 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     _order: *const fmi2Integer,
     _value: *const fmi2Real,
 ) -> fmi2Status {
-    unsupported(c, "fmi2SetRealInputDerivatives", "canInterpolateInputs=\"false\"")
+    unsupported(
+        c,
+        "fmi2SetRealInputDerivatives",
+        "canInterpolateInputs=\"false\"",
+    )
 }
 const _: fmi2SetRealInputDerivativesTYPE = Some(fmi2SetRealInputDerivatives);
 

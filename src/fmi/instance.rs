@@ -5,7 +5,7 @@
 //! converts pointers to slices and calls the methods here.
 
 use super::model::{InstanceContext, Model, ModelError, ModelInfo};
-use super::variables::{ByteReader, Causality, VarInfo, VarType, Values, Variability};
+use super::variables::{ByteReader, Causality, Values, VarInfo, VarType, Variability};
 use fmi_sys::fmi2::{
     fmi2CallbackLogger, fmi2ComponentEnvironment, fmi2Status, fmi2Status_fmi2Discard,
     fmi2Status_fmi2Error, fmi2Status_fmi2OK, fmi2Status_fmi2Warning,
@@ -411,9 +411,7 @@ impl Instance {
         let end = current + step;
         if let Some(stop) = self.stop_time {
             if end > stop + TIME_TOLERANCE * (1.0 + stop.abs()) {
-                return self.error(&format!(
-                    "step to t = {end} goes past stopTime = {stop}"
-                ));
+                return self.error(&format!("step to t = {end} goes past stopTime = {stop}"));
             }
         }
         self.dirty = true;

@@ -4,7 +4,7 @@
 //! turns parameters and inputs into outputs. Everything FMI-specific — the state machine,
 //! value checks against the table, logging, FMU states — lives in [`crate::fmi::instance`].
 
-use super::variables::{Counts, DefaultExperiment, VarInfo, Values};
+use super::variables::{Counts, DefaultExperiment, Values, VarInfo};
 use std::path::PathBuf;
 
 /// How a model step failed.

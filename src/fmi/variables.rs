@@ -66,7 +66,9 @@ impl VarInfo {
     /// Whether `x` lies in the declared range (NaN and ±∞ never do).
     pub fn accepts_real(&self, x: f64) -> bool {
         x.is_finite()
-            && self.min.is_none_or(|lo| if self.min_exclusive { x > lo } else { x >= lo })
+            && self
+                .min
+                .is_none_or(|lo| if self.min_exclusive { x > lo } else { x >= lo })
             && self.max.is_none_or(|hi| x <= hi)
     }
 

@@ -37,7 +37,11 @@ fn fastsim_settings(values: &Values) -> Result<FastsimSettings, ModelError> {
     let bound = match values.integer(var::tractionBound) {
         1 => TractionBound::Elliptic,
         2 => TractionBound::Parabolic,
-        k => return Err(ModelError::Error(format!("tractionBound = {k} is not 1 or 2"))),
+        k => {
+            return Err(ModelError::Error(format!(
+                "tractionBound = {k} is not 1 or 2"
+            )))
+        }
     };
     let flexibility = match values.integer(var::flexibility) {
         1 => Flexibility::Three,
