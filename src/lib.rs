@@ -16,7 +16,6 @@ pub mod fastsim;
 pub mod hertz;
 pub mod kalker;
 pub mod point_contact;
-pub mod profile;
 
 pub mod fmi;
 pub mod models;
