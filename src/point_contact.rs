@@ -99,10 +99,16 @@ impl PointContact {
         require_positive("B", input.curv_b)?;
         require_non_negative("V", input.rolling_speed)?;
         let e_star = contact_modulus(m.youngs_modulus, m.poisson_ratio);
-        let patch = hertz_from_load(input.curv_a, input.curv_b, input.normal_force, e_star)?;
-        // The axis ratio a/b depends on A/B only; at N = 0 take it from a unit-load ellipse so
-        // the coefficients still describe the contact's shape.
-        let shape = if input.normal_force > 0.0 {
+        let mut patch = hertz_from_load(input.curv_a, input.curv_b, input.normal_force, e_star)?;
+        // A load so small that the ellipse underflows to zero size is no contact.
+        let in_contact = patch.a.is_normal() && patch.b.is_normal();
+        if !in_contact {
+            patch = HertzPatch::default();
+        }
+        let normal_force = if in_contact { input.normal_force } else { 0.0 };
+        // The axis ratio a/b depends on A/B only; without contact take it from a unit-load
+        // ellipse so the coefficients still describe the contact's shape.
+        let shape = if in_contact {
             patch
         } else {
             hertz_from_load(input.curv_a, input.curv_b, 1.0, e_star)?
@@ -111,7 +117,7 @@ impl PointContact {
         let contact = EllipticContact {
             a: patch.a,
             b: patch.b,
-            normal_force: input.normal_force,
+            normal_force,
             shear_modulus: shear_modulus(m.youngs_modulus, m.poisson_ratio),
             nu: m.poisson_ratio,
             mu: m.friction,
@@ -124,5 +130,68 @@ impl PointContact {
             coefficients,
             tangential,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn solver() -> PointContact {
+        let material = Material {
+            youngs_modulus: 2.1e11,
+            poisson_ratio: 0.28,
+            friction: 0.3,
+        };
+        PointContact::new(material, FastsimSettings::default()).unwrap()
+    }
+
+    fn input(normal_force: f64) -> PointContactInput {
+        PointContactInput {
+            normal_force,
+            curv_a: 0.8464,
+            curv_b: 2.406,
+            rolling_speed: 30.0,
+            creepage: Creepage {
+                xi: 1e-3,
+                eta: -6.25e-4,
+                phi: 0.625,
+            },
+        }
+    }
+
+    #[test]
+    fn no_load_and_underflowing_load_mean_no_contact() {
+        let mut s = solver();
+        let reference = s.solve(&input(82_000.0)).unwrap();
+        // The smallest positive f64 load: the ellipse underflows; treated as no contact, and
+        // the coefficients still describe the shape (a/b from A/B only, so equal to the loaded
+        // case's to rounding).
+        for n in [0.0, 5e-324] {
+            let r = s.solve(&input(n)).unwrap();
+            assert_eq!(r.patch, HertzPatch::default());
+            assert_eq!(
+                (r.tangential.fx, r.tangential.fy, r.tangential.mz),
+                (0.0, 0.0, 0.0)
+            );
+            assert!((r.coefficients.c11 / reference.coefficients.c11 - 1.0).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn material_ranges_are_checked_by_name() {
+        let bad = Material {
+            youngs_modulus: 2.1e11,
+            poisson_ratio: 0.6,
+            friction: 0.3,
+        };
+        let e = PointContact::new(bad, FastsimSettings::default())
+            .err()
+            .unwrap();
+        assert_eq!(e.name, "nu");
+        let mut s = solver();
+        let mut i = input(1e4);
+        i.curv_b = -1.0;
+        assert_eq!(s.solve(&i).unwrap_err().name, "B");
     }
 }

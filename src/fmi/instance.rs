@@ -517,12 +517,20 @@ impl Instance {
         let needs_initialize = r.bool()?;
         let dirty = r.bool()?;
         let terminated_by_model = r.bool()?;
+        if ![time, last_successful_time].iter().all(|t| t.is_finite())
+            || (has_stop && !stop.is_finite())
+        {
+            return Err("FMU state corrupt: non-finite time".into());
+        }
         let values = Values::read_bytes(self.info.counts, &mut r)?;
         for v in self.info.variables {
-            if v.ty == VarType::Real
-                && v.causality != Causality::Output
-                && !v.accepts_real(values.reals[v.slot])
-            {
+            let ok = match (v.ty, v.causality) {
+                (VarType::Real, Causality::Output) => values.reals[v.slot].is_finite(),
+                (VarType::Real, _) => v.accepts_real(values.reals[v.slot]),
+                (VarType::Integer, _) => v.accepts_integer(values.integers[v.slot]),
+                (VarType::Boolean | VarType::String, _) => true,
+            };
+            if !ok {
                 return Err(format!("FMU state corrupt: {} out of range", v.name));
             }
         }
