@@ -11,11 +11,14 @@
 
 pub mod error;
 
+pub mod contact_search;
 pub mod elliptic;
 pub mod fastsim;
 pub mod hertz;
 pub mod kalker;
 pub mod point_contact;
+pub mod profile;
+pub mod track;
 
 pub mod fmi;
 pub mod models;

@@ -1,0 +1,529 @@
+//! Rigid contact search between one wheel and its rail for a wheelset pose.
+//!
+//! Method (physics.md §1, §5.1): in the side frame (see [`crate::track`]) the wheelset pose is a
+//! lateral shift, a yaw angle ψ and a roll angle θ. For each lateral coordinate W across the rail
+//! (measured from the wheelset centre along the wheelset's own lateral axis):
+//!
+//! * **roll** is applied by rotating the rail curve by −θ about the wheelset centre into the
+//!   wheelset frame (a rail is a 2-D curve extruded along x, so the rotated rail is again a curve);
+//! * **yaw**: a wheel of revolution seen from below has, at lateral W, its lowest point at the
+//!   longitudinal position X where r(l)² − d² is largest, with l = −X sin ψ + W cos ψ the axial
+//!   coordinate, d = X cos ψ + W sin ψ the horizontal distance from the axle plane and r(l) the
+//!   wheel radius; a few Newton steps on X give the yaw lead/lag of the contact point (exact for
+//!   a surface of revolution; roll–yaw coupling neglected, second order);
+//! * the **vertical gap** g(W) = z_rail(W) − z_wheel(W) (z down) is sampled on a uniform grid and
+//!   its local minima are refined by golden-section search: each separate local minimum is a
+//!   potential contact point (tread, flange root, flange). Minima whose gap rises between them by
+//!   less than [`MIN_PROMINENCE`] are one point.
+//!
+//! Per contact point: contact angle γ (from the rail slope; positive when the contact plane rises
+//! towards the gauge side, i.e. towards the flange — the same sign on both wheels), rolling radius,
+//! rail and wheel profile coordinates, and the relative curvatures
+//! A = cos γ/(2r) (Meusnier, straight rail) and B = (κ_rail − κ_wheel)/2 with
+//! κ = z''/(1 + z'²)^{3/2}, floored at `b_min` (CONTACT's floor 1e−4 1/mm, physics.md §5.10).
+//!
+//! Known limits: the gap is measured vertically in the wheelset frame (δ_normal = δ_vertical·cos γ);
+//! B ignores the small change of lateral curvature by yaw; straight track.
+
+use crate::profile::Profile;
+use crate::track::{GeometryError, MountedRail, TrackSetup};
+
+/// Largest number of separate contact candidates kept per wheel.
+pub const MAX_CANDIDATES: usize = 8;
+
+/// Local minima whose separating ridge is lower than this above the shallower minimum are
+/// numerical ripples of the profile splines, not separate contacts [m] (1 µm: far below the
+/// approaches of 10–100 µm that wheel loads produce).
+pub const MIN_PROMINENCE: f64 = 1e-6;
+
+/// Default sampling step of the gap function [m].
+pub const DEFAULT_SCAN_STEP: f64 = 5e-4;
+
+/// Default floor of the relative lateral curvature B [1/m] (CONTACT: 1e−4 1/mm).
+pub const DEFAULT_B_MIN: f64 = 0.1;
+
+/// Wheelset pose in a side frame (lateral towards this side's field side).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SidePose {
+    /// Lateral position of the wheelset centre [m].
+    pub lateral: f64,
+    /// Yaw angle about z (down) [rad].
+    pub yaw: f64,
+    /// Roll angle about x [rad], positive lowering this side.
+    pub roll: f64,
+}
+
+/// One rigid contact point.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactPoint {
+    /// Lateral coordinate from the wheelset centre (wheelset frame, towards the field side) [m].
+    pub lateral: f64,
+    /// Longitudinal position (yaw lead/lag), positive forward [m].
+    pub longitudinal: f64,
+    /// Vertical gap at the point with the wheelset at its nominal height [m]; negative means
+    /// interpenetration. Lowering the wheel by dz reduces it by dz.
+    pub gap: f64,
+    /// Lateral coordinate in the mounted rail frame (towards the field side) [m].
+    pub y_rail: f64,
+    /// Lateral coordinate in the wheel profile frame [m].
+    pub y_wheel: f64,
+    /// Contact angle, positive towards the flange [rad].
+    pub contact_angle: f64,
+    /// Rolling radius [m].
+    pub rolling_radius: f64,
+    /// Relative longitudinal curvature A [1/m].
+    pub curv_a: f64,
+    /// Relative lateral curvature B [1/m] (floored).
+    pub curv_b: f64,
+    /// Highest sampled gap between this point and the next one towards the gauge side [m]
+    /// (+∞ for the last point): two points whose interpenetration regions join are one patch.
+    pub ridge_to_next: f64,
+}
+
+/// Contact candidates of one wheel, ordered from the field side to the gauge side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactCandidates {
+    points: [ContactPoint; MAX_CANDIDATES],
+    len: usize,
+}
+
+impl Default for ContactCandidates {
+    fn default() -> Self {
+        Self {
+            points: [ContactPoint::default(); MAX_CANDIDATES],
+            len: 0,
+        }
+    }
+}
+
+impl ContactCandidates {
+    pub fn as_slice(&self) -> &[ContactPoint] {
+        &self.points[..self.len]
+    }
+    pub fn len(&self) -> usize {
+        self.len
+    }
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+    fn clear(&mut self) {
+        self.len = 0;
+    }
+    fn push(&mut self, p: ContactPoint) {
+        if self.len < MAX_CANDIDATES {
+            self.points[self.len] = p;
+            self.len += 1;
+        }
+    }
+}
+
+/// Why a pose has no usable rigid contact.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SearchError {
+    /// The wheel and rail profiles do not overlap laterally at this pose.
+    NoOverlap { lateral: f64 },
+    /// The deepest point lies at the end of a profile (flange climb or wheel off the rail).
+    AtProfileEnd { lateral: f64, y_rail: f64 },
+}
+
+impl std::fmt::Display for SearchError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SearchError::NoOverlap { lateral } => write!(
+                f,
+                "no rigid contact inside the profiles' range: wheel and rail profiles do not \
+                 overlap at lateral wheelset position {lateral} m"
+            ),
+            SearchError::AtProfileEnd { lateral, y_rail } => write!(
+                f,
+                "no rigid contact inside the profiles' range: the closest approach lies at the \
+                 end of a profile (yRail = {y_rail} m) at lateral wheelset position {lateral} m \
+                 (flange climb or the wheel leaving the rail)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SearchError {}
+
+/// An interpenetration region of one wheel at a given vertical position (sample indices of the
+/// last search).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Region {
+    /// First and last sample inside the region (gauge side first).
+    pub first: usize,
+    pub last: usize,
+    /// Penetration-weighted centroid, as a fractional sample index.
+    pub centroid_index: f64,
+    /// Sample index of the deepest point.
+    pub deepest: usize,
+    /// Largest vertical interpenetration [m].
+    pub depth: f64,
+}
+
+/// A sample of the gap function.
+#[derive(Debug, Clone, Copy, Default)]
+struct GapSample {
+    gap: f64,
+    x: f64,
+    y_rail: f64,
+    y_wheel: f64,
+}
+
+/// Trigonometry and offsets of a pose, computed once per search.
+#[derive(Debug, Clone, Copy)]
+struct Prepared {
+    lateral: f64,
+    sin_yaw: f64,
+    cos_yaw: f64,
+    sin_roll: f64,
+    cos_roll: f64,
+}
+
+/// One wheel on its rail: mounted geometry plus the scan buffer (allocated once).
+#[derive(Debug, Clone)]
+pub struct WheelOnRail {
+    rail: MountedRail,
+    wheel: Profile,
+    setup: TrackSetup,
+    scan_step: f64,
+    b_min: f64,
+    samples: Vec<GapSample>,
+    /// Lateral coordinate of the first sample and the sample spacing of the last search [m].
+    scan_lo: f64,
+    scan_dw: f64,
+}
+
+impl WheelOnRail {
+    /// Mounts `rail` per `setup` and pairs it with `wheel`. `scan_step` [m] is the sampling
+    /// step of the gap function; `b_min` [1/m] the floor of B.
+    pub fn new(
+        wheel: Profile,
+        rail: &Profile,
+        setup: &TrackSetup,
+        scan_step: f64,
+        b_min: f64,
+    ) -> Result<Self, GeometryError> {
+        crate::error::require_positive("scanStep", scan_step)?;
+        crate::error::require_positive("bMin", b_min)?;
+        if wheel.kind() != crate::profile::ProfileKind::Wheel {
+            return Err(GeometryError::Profile(format!(
+                "{} is not a wheel profile",
+                wheel.name()
+            )));
+        }
+        let rail = MountedRail::new(rail, setup)?;
+        let (r0, r1) = rail.profile().y_range();
+        let capacity = ((r1 - r0) / scan_step).ceil() as usize + 3;
+        Ok(Self {
+            rail,
+            wheel,
+            setup: *setup,
+            scan_step,
+            b_min,
+            samples: Vec::with_capacity(capacity),
+            scan_lo: 0.0,
+            scan_dw: scan_step,
+        })
+    }
+
+    pub fn rail(&self) -> &MountedRail {
+        &self.rail
+    }
+    pub fn wheel(&self) -> &Profile {
+        &self.wheel
+    }
+    pub fn setup(&self) -> &TrackSetup {
+        &self.setup
+    }
+
+    /// Rail surface in the wheelset frame at lateral `w`: (vertical coordinate below the axle,
+    /// rail-frame lateral coordinate).
+    fn rail_at(&self, w: f64, p: &Prepared) -> (f64, f64) {
+        let origin = self.rail.origin_lateral();
+        let z_centre = -self.setup.wheel_radius;
+        let rail = self.rail.profile();
+        let mut y_r = w + p.lateral - origin;
+        let mut z_r = rail.z(y_r);
+        if p.sin_roll != 0.0 {
+            // Fixed point for the rail point that the rotation maps to lateral w; converges at
+            // rate |tan θ · z_r'|, tiny for wheelset roll angles.
+            for _ in 0..3 {
+                y_r = (w - (z_r - z_centre) * p.sin_roll) / p.cos_roll + p.lateral - origin;
+                z_r = rail.z(y_r);
+            }
+        }
+        let y = origin + y_r - p.lateral;
+        let z = -y * p.sin_roll + (z_r - z_centre) * p.cos_roll;
+        (z, y_r)
+    }
+
+    /// Lowest point of the (yawed) wheel at lateral `w`: (vertical coordinate below the axle,
+    /// longitudinal position, wheel-profile lateral coordinate).
+    fn wheel_at(&self, w: f64, p: &Prepared) -> (f64, f64, f64) {
+        let r0 = self.setup.wheel_radius;
+        let offset = self.setup.taping_line_offset();
+        if p.sin_yaw == 0.0 {
+            let y_w = w - offset;
+            return (r0 + self.wheel.z(y_w), 0.0, y_w);
+        }
+        // Newton on X for the maximum of q(X) = r(l)² − d².
+        let mut x = -w * p.sin_yaw / p.cos_yaw;
+        for _ in 0..4 {
+            let l = -x * p.sin_yaw + w * p.cos_yaw;
+            let d = x * p.cos_yaw + w * p.sin_yaw;
+            let (z, dz, d2z) = self.wheel.eval(l - offset);
+            let r = r0 + z;
+            let q1 = -2.0 * r * dz * p.sin_yaw - 2.0 * d * p.cos_yaw;
+            let q2 =
+                2.0 * (dz * dz + r * d2z) * p.sin_yaw * p.sin_yaw - 2.0 * p.cos_yaw * p.cos_yaw;
+            if q2 >= 0.0 {
+                break;
+            }
+            x -= q1 / q2;
+        }
+        let l = -x * p.sin_yaw + w * p.cos_yaw;
+        let d = x * p.cos_yaw + w * p.sin_yaw;
+        let r = r0 + self.wheel.z(l - offset);
+        ((r * r - d * d).max(0.0).sqrt(), x, l - offset)
+    }
+
+    fn sample(&self, w: f64, p: &Prepared) -> GapSample {
+        let (z_rail, y_rail) = self.rail_at(w, p);
+        let (z_wheel, x, y_wheel) = self.wheel_at(w, p);
+        GapSample {
+            gap: z_rail - z_wheel,
+            x,
+            y_rail,
+            y_wheel,
+        }
+    }
+
+    /// Lateral range (wheelset frame) where both profiles are defined at this pose. The rail's
+    /// end points are mapped through the roll rotation exactly (at the rail's ends the lever arm
+    /// to the wheelset centre is ~0.5 m, so a few mrad of roll shift them by millimetres).
+    fn overlap(&self, p: &Prepared) -> Option<(f64, f64)> {
+        let rail = self.rail.profile();
+        let (r0, r1) = rail.y_range();
+        let (w0, w1) = self.wheel.y_range();
+        let origin = self.rail.origin_lateral();
+        let offset = self.setup.taping_line_offset();
+        let z_centre = -self.setup.wheel_radius;
+        let mapped = |y_r: f64| {
+            (origin + y_r - p.lateral) * p.cos_roll + (rail.z(y_r) - z_centre) * p.sin_roll
+        };
+        let (a, b) = (mapped(r0), mapped(r1));
+        // One scan step inside both ends, so the roll fixed point never leaves the rail.
+        let lo = a.min(b).max(offset + w0) + self.scan_step;
+        let hi = a.max(b).min(offset + w1) - self.scan_step;
+        (hi - lo > 2.0 * self.scan_step).then_some((lo, hi))
+    }
+
+    /// Golden-section refinement of a sampled minimum on [a, b].
+    fn refine(&self, mut a: f64, mut b: f64, p: &Prepared) -> (f64, GapSample) {
+        const INV_PHI: f64 = 0.618_033_988_749_894_8;
+        let mut c = b - INV_PHI * (b - a);
+        let mut d = a + INV_PHI * (b - a);
+        let mut fc = self.sample(c, p);
+        let mut fd = self.sample(d, p);
+        // 1e−8 m is far below every contact dimension; 40 iterations shrink 1 mm below it.
+        while b - a > 1e-8 {
+            if fc.gap <= fd.gap {
+                b = d;
+                d = c;
+                fd = fc;
+                c = b - INV_PHI * (b - a);
+                fc = self.sample(c, p);
+            } else {
+                a = c;
+                c = d;
+                fc = fd;
+                d = a + INV_PHI * (b - a);
+                fd = self.sample(d, p);
+            }
+        }
+        if fc.gap <= fd.gap {
+            (c, fc)
+        } else {
+            (d, fd)
+        }
+    }
+
+    fn describe(&self, w: f64, s: &GapSample, ridge_to_next: f64) -> ContactPoint {
+        let (_, dz_r, d2z_r) = self.rail.profile().eval(s.y_rail);
+        let (z_w, dz_w, d2z_w) = self.wheel.eval(s.y_wheel);
+        let contact_angle = -dz_r.atan();
+        let rolling_radius = self.setup.wheel_radius + z_w;
+        let curvature = |dz: f64, d2z: f64| d2z / (1.0 + dz * dz).powf(1.5);
+        let curv_b = (0.5 * (curvature(dz_r, d2z_r) - curvature(dz_w, d2z_w))).max(self.b_min);
+        ContactPoint {
+            lateral: w,
+            longitudinal: s.x,
+            gap: s.gap,
+            y_rail: s.y_rail,
+            y_wheel: s.y_wheel,
+            contact_angle,
+            rolling_radius,
+            curv_a: 0.5 * contact_angle.cos() / rolling_radius,
+            curv_b,
+            ridge_to_next,
+        }
+    }
+
+    /// The interpenetration regions of the last [`WheelOnRail::search`] when the wheel is
+    /// lowered by `dz` [m] from its nominal height: maximal runs of samples with gap < dz.
+    /// Each region gets the penetration-weighted centroid of the interpenetration (CONTACT's
+    /// contact reference point) and its deepest point. Regions are written field side first;
+    /// returns how many there are (at most `out.len()`; if more exist, the deepest are kept).
+    pub fn regions(&self, dz: f64, out: &mut [Region]) -> usize {
+        let s = &self.samples;
+        let mut count = 0usize;
+        let mut i = s.len();
+        // Walk from the field side (last sample) to the gauge side.
+        while i > 0 {
+            i -= 1;
+            if s[i].gap >= dz {
+                continue;
+            }
+            let end = i;
+            let mut weight = 0.0;
+            let mut moment = 0.0;
+            let mut deepest = i;
+            loop {
+                // Interpenetration volume per unit width: ∫ (pen − A x²) dx ∝ pen^{3/2}.
+                let pen = (dz - s[i].gap).powf(1.5);
+                weight += pen;
+                moment += pen * i as f64;
+                if s[i].gap < s[deepest].gap {
+                    deepest = i;
+                }
+                if i == 0 || s[i - 1].gap >= dz {
+                    break;
+                }
+                i -= 1;
+            }
+            let start = i;
+            let centroid = moment / weight;
+            let region = Region {
+                first: start,
+                last: end,
+                centroid_index: centroid,
+                deepest,
+                depth: dz - s[deepest].gap,
+            };
+            if count < out.len() {
+                out[count] = region;
+                count += 1;
+            } else if let Some(shallowest) =
+                (0..count).min_by(|&a, &b| out[a].depth.total_cmp(&out[b].depth))
+            {
+                if region.depth > out[shallowest].depth {
+                    out.copy_within(shallowest + 1..count, shallowest);
+                    out[count - 1] = region;
+                }
+            }
+        }
+        count
+    }
+
+    /// Describes the point at fractional sample index `at` (linear interpolation between the
+    /// samples of the last search): lateral position, rail coordinate and the rail's contact
+    /// angle and profile coordinates there.
+    pub fn point_at(&self, at: f64) -> ContactPoint {
+        let s = &self.samples;
+        let i = (at.floor().max(0.0) as usize).min(s.len().saturating_sub(2));
+        let t = at - i as f64;
+        let lerp = |a: f64, b: f64| a + (b - a) * t;
+        let sample = GapSample {
+            gap: lerp(s[i].gap, s[i + 1].gap),
+            x: lerp(s[i].x, s[i + 1].x),
+            y_rail: lerp(s[i].y_rail, s[i + 1].y_rail),
+            y_wheel: lerp(s[i].y_wheel, s[i + 1].y_wheel),
+        };
+        let w = self.scan_lo + self.scan_dw * at;
+        self.describe(w, &sample, f64::INFINITY)
+    }
+
+    /// Finds the contact candidates at `pose`, ordered from the field side to the gauge side.
+    pub fn search(
+        &mut self,
+        pose: &SidePose,
+        out: &mut ContactCandidates,
+    ) -> Result<(), SearchError> {
+        out.clear();
+        let p = Prepared {
+            lateral: pose.lateral,
+            sin_yaw: pose.yaw.sin(),
+            cos_yaw: pose.yaw.cos(),
+            sin_roll: pose.roll.sin(),
+            cos_roll: pose.roll.cos(),
+        };
+        let (lo, hi) = self.overlap(&p).ok_or(SearchError::NoOverlap {
+            lateral: pose.lateral,
+        })?;
+        let n = ((hi - lo) / self.scan_step).ceil() as usize;
+        let step = (hi - lo) / n as f64;
+        self.scan_lo = lo;
+        self.scan_dw = step;
+        let mut samples = std::mem::take(&mut self.samples);
+        samples.clear();
+        samples.extend((0..=n).map(|i| self.sample(lo + step * i as f64, &p)));
+
+        // Deepest sample overall: at a profile end means no contact inside the profiles.
+        let deepest = samples
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.gap.total_cmp(&b.1.gap))
+            .map_or(0, |(i, _)| i);
+        if deepest == 0 || deepest == n {
+            let y_rail = samples[deepest].y_rail;
+            self.samples = samples;
+            return Err(SearchError::AtProfileEnd {
+                lateral: pose.lateral,
+                y_rail,
+            });
+        }
+
+        // Interior local minima, scanned from the gauge side (small w) to the field side.
+        // found[k] = (sample index, highest gap between minimum k and minimum k + 1). Minima
+        // separated by a ridge less than MIN_PROMINENCE above the shallower one are merged, and
+        // so is any minimum beyond MAX_CANDIDATES into the last kept one (keeping the deeper).
+        let mut found: [(usize, f64); MAX_CANDIDATES] = [(0, f64::INFINITY); MAX_CANDIDATES];
+        let mut count = 0usize;
+        let mut ridge = f64::NEG_INFINITY;
+        for i in 1..n {
+            let g = samples[i].gap;
+            ridge = ridge.max(g);
+            if !(g <= samples[i - 1].gap && g < samples[i + 1].gap) {
+                continue;
+            }
+            if count > 0 {
+                let prev = found[count - 1].0;
+                let separate = ridge - samples[prev].gap.max(g) >= MIN_PROMINENCE;
+                if !separate || count == MAX_CANDIDATES {
+                    if g < samples[prev].gap {
+                        found[count - 1].0 = i;
+                    }
+                    ridge = g;
+                    continue;
+                }
+                found[count - 1].1 = ridge;
+            }
+            found[count] = (i, f64::INFINITY);
+            count += 1;
+            ridge = g;
+        }
+        // Refine and describe, field side first (largest w first); `ridge_to_next` looks towards
+        // the gauge side, i.e. at the ridge recorded for the previous minimum.
+        for k in (0..count).rev() {
+            let i = found[k].0;
+            let a = lo + step * (i - 1) as f64;
+            let b = lo + step * (i + 1) as f64;
+            let (w, s) = self.refine(a, b, &p);
+            let ridge_to_gauge = if k > 0 { found[k - 1].1 } else { f64::INFINITY };
+            out.push(self.describe(w, &s, ridge_to_gauge));
+        }
+        self.samples = samples;
+        Ok(())
+    }
+}
