@@ -19,6 +19,7 @@ pub mod kalker;
 pub mod point_contact;
 pub mod profile;
 pub mod track;
+pub mod wheelset;
 
 pub mod fmi;
 pub mod models;

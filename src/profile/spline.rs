@@ -425,7 +425,7 @@ mod tests {
     }
 
     #[test]
-    fn smoothing_of_a_line_is_the_line_and_huge_smoothing_tends_to_least_squares() {
+    fn smoothing_leaves_a_straight_line_unchanged() {
         let y: Vec<f64> = (0..20).map(|i| i as f64 * 0.01).collect();
         let z: Vec<f64> = y.iter().map(|v| 2.0 * v + 1.0).collect();
         let s = CubicSpline::fit(&y, &z, None, 0.5).unwrap();

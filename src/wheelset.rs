@@ -1,0 +1,524 @@
+//! One wheelset on straight track: contact search on both wheels, multi-Hertzian normal contact,
+//! creepages from the wheelset kinematics, FASTSIM per patch, and the forces in track axes.
+//!
+//! Per wheel (in its side frame, see [`crate::track`]):
+//! 1. rigid contact search ([`crate::contact_search`]) gives the gap function and its minima;
+//! 2. the wheel's vertical position is either prescribed (`z`) or found so that the vertical force
+//!    of the rail on the wheel balances the prescribed wheel load Q — including the vertical
+//!    components of the creep forces, which matter in flange contact (N cos γ + σ Fy sin γ = Q);
+//! 3. each connected interpenetration region is one patch (at most [`MAX_PATCHES`], the deepest
+//!    kept): its reference point is the volume-weighted centroid of the interpenetration
+//!    (CONTACT's contact reference point), which gives `yRail`, the contact angle and the rolling
+//!    radius; its Hertz ellipse uses the curvatures and the normal approach δ_v·cos γ at the
+//!    region's deepest point (multi-Hertzian: physics.md §2, §5.1);
+//! 4. creepages at the reference point from the wheelset's rigid-body motion (body 1 = wheel):
+//!    v = v_C + Ω × (P − C), ξ = v·e_x/V, η = v·e_y/V, φ = Ω·e_z/V with V = max(|vx|, V_MIN), or
+//!    prescribed;
+//! 5. FASTSIM per patch (the patch is planar; per-strip spin is the non-elliptic issue's work).
+//!
+//! Contact axes of a patch, in track axes (x forward, y right, z down), for both wheels
+//! right-handed with e_y pointing to the right: e_x = (1, 0, 0), e_z = (0, σ sin γ, cos γ) (from the
+//! wheel into the rail), e_y = (0, cos γ, −σ sin γ), σ = +1 right, −1 left. The force of the rail
+//! on the wheel is F = Fx e_x + Fy e_y − N e_z.
+//!
+//! Known limits: vertical gap (δ_n = δ_v cos γ); each wheel's vertical position is found
+//! independently at the given roll (as CONTACT does with per-wheel prescribed loads); straight
+//! track; the wheelset's angular velocity has no roll-rate term.
+
+use crate::contact_search::{
+    ContactCandidates, ContactPoint, Region, SearchError, SidePose, WheelOnRail,
+};
+use crate::error::InputError;
+use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
+use crate::hertz::{contact_modulus, hertz_from_approach, shear_modulus};
+use crate::point_contact::Material;
+use crate::profile::Profile;
+use crate::track::{GeometryError, TrackSetup};
+
+/// Patches reported per wheel.
+pub const MAX_PATCHES: usize = 3;
+
+/// Reference speed below which creepages are computed with this speed instead [m/s]: keeps
+/// creepages finite at standstill (a spinning wheel at standstill is then in full sliding, a
+/// wheel at rest has zero creepage). Documented in `docs/conventions.md`.
+pub const V_MIN: f64 = 0.01;
+
+/// Relative tolerance on the vertical force balance.
+const LOAD_TOLERANCE: f64 = 1e-9;
+/// Iteration limit of the load balance (safeguarded secant; converges in ~5–10).
+const LOAD_ITERATIONS: usize = 60;
+
+/// Static settings of a wheelset.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelsetSettings {
+    pub setup: TrackSetup,
+    pub material: Material,
+    pub fastsim: FastsimSettings,
+    /// Sampling step of the gap function [m].
+    pub scan_step: f64,
+    /// Floor of the relative lateral curvature B [1/m].
+    pub b_min: f64,
+}
+
+/// How the wheels' vertical positions are set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Vertical {
+    /// Vertical wheel loads [N] (≥ 0; 0 means the wheel is lifted off).
+    Loads { left: f64, right: f64 },
+    /// Downward displacement of the wheelset centre from its nominal height (the taping-line
+    /// radius above the rail tops) [m].
+    Position { z: f64 },
+}
+
+/// How the creepages are obtained.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Creepages {
+    /// From the wheelset motion: forward speed vx, lateral velocity vy [m/s], yaw rate [rad/s],
+    /// angular velocity about the axle ω [rad/s], positive when rolling forward.
+    Kinematic {
+        vx: f64,
+        vy: f64,
+        yaw_rate: f64,
+        omega: f64,
+    },
+    /// The same creepages at every patch's reference point; `vx` only scales the power.
+    Prescribed { creepage: Creepage, vx: f64 },
+}
+
+/// Pose and motion of the wheelset.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelsetInput {
+    /// Lateral shift towards the right rail [m].
+    pub y: f64,
+    /// Yaw angle about z (down) [rad].
+    pub yaw: f64,
+    /// Roll angle about x [rad], positive lowering the right wheel.
+    pub roll: f64,
+    pub vertical: Vertical,
+    pub creepages: Creepages,
+}
+
+/// One contact patch (forces of the rail on the wheel, contact axes).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PatchResult {
+    pub fn_: f64,
+    pub fx: f64,
+    pub fy: f64,
+    pub mz: f64,
+    pub area: f64,
+    pub pmax: f64,
+    /// Semi-axes of the patch ellipse along x and across [m].
+    pub a: f64,
+    pub b: f64,
+    pub y_rail: f64,
+    pub contact_angle: f64,
+    pub rolling_radius: f64,
+    /// Normal approach [m].
+    pub penetration: f64,
+    pub creepage: Creepage,
+    pub adhesion_fraction: f64,
+    pub frictional_power: f64,
+    pub max_traction: f64,
+    /// Curvatures used for the ellipse [1/m].
+    pub curv_a: f64,
+    pub curv_b: f64,
+}
+
+/// One wheel's result.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SideResult {
+    pub n_patches: usize,
+    /// Field side first; unused entries are zero.
+    pub patches: [PatchResult; MAX_PATCHES],
+    /// Total force of the rail on the wheel in track axes [N].
+    pub force: [f64; 3],
+    /// The wheel's downward displacement from nominal at which it carries its load [m].
+    pub z: f64,
+}
+
+/// Both wheels.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WheelsetResult {
+    pub left: SideResult,
+    pub right: SideResult,
+}
+
+/// Why a wheelset evaluation failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum WheelsetError {
+    /// An input is out of range (names the FMU variable).
+    Input(InputError),
+    /// The pose has no usable rigid contact on one wheel: the simulation cannot continue.
+    NoContact {
+        side: &'static str,
+        reason: SearchError,
+    },
+}
+
+impl std::fmt::Display for WheelsetError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            WheelsetError::Input(e) => e.fmt(f),
+            WheelsetError::NoContact { side, reason } => write!(f, "{side} wheel: {reason}"),
+        }
+    }
+}
+
+impl std::error::Error for WheelsetError {}
+
+impl From<InputError> for WheelsetError {
+    fn from(e: InputError) -> Self {
+        WheelsetError::Input(e)
+    }
+}
+
+/// One wheel with its solver buffers.
+struct Side {
+    name: &'static str,
+    /// +1 right, −1 left.
+    sigma: f64,
+    geometry: WheelOnRail,
+    candidates: ContactCandidates,
+    regions: [Region; MAX_PATCHES],
+    fastsim: [Fastsim; MAX_PATCHES],
+}
+
+/// A wheelset contact solver; owns every buffer, so [`Wheelset::solve`] does not allocate.
+pub struct Wheelset {
+    settings: WheelsetSettings,
+    e_star: f64,
+    shear_modulus: f64,
+    left: Side,
+    right: Side,
+}
+
+impl Wheelset {
+    /// Mounts `rail` on both sides and `wheel` on both ends of the axle (the left side mirrored).
+    pub fn new(
+        wheel: &Profile,
+        rail: &Profile,
+        settings: WheelsetSettings,
+    ) -> Result<Self, GeometryError> {
+        settings.material.validate()?;
+        let m = settings.material;
+        let side = |name, sigma| -> Result<Side, GeometryError> {
+            Ok(Side {
+                name,
+                sigma,
+                geometry: WheelOnRail::new(
+                    wheel.clone(),
+                    rail,
+                    &settings.setup,
+                    settings.scan_step,
+                    settings.b_min,
+                )?,
+                candidates: ContactCandidates::default(),
+                regions: [Region::default(); MAX_PATCHES],
+                fastsim: [
+                    Fastsim::new(settings.fastsim)?,
+                    Fastsim::new(settings.fastsim)?,
+                    Fastsim::new(settings.fastsim)?,
+                ],
+            })
+        };
+        Ok(Self {
+            settings,
+            e_star: contact_modulus(m.youngs_modulus, m.poisson_ratio),
+            shear_modulus: shear_modulus(m.youngs_modulus, m.poisson_ratio),
+            left: side("left", -1.0)?,
+            right: side("right", 1.0)?,
+        })
+    }
+
+    pub fn settings(&self) -> &WheelsetSettings {
+        &self.settings
+    }
+
+    /// The geometry of one wheel (`right = true` for the right wheel).
+    pub fn geometry(&self, right: bool) -> &WheelOnRail {
+        if right {
+            &self.right.geometry
+        } else {
+            &self.left.geometry
+        }
+    }
+
+    /// Solves both wheels.
+    pub fn solve(
+        &mut self,
+        input: &WheelsetInput,
+        out: &mut WheelsetResult,
+    ) -> Result<(), WheelsetError> {
+        check_input(input)?;
+        let ctx = Context {
+            e_star: self.e_star,
+            shear_modulus: self.shear_modulus,
+            material: self.settings.material,
+        };
+        let (q_left, q_right, z) = match input.vertical {
+            Vertical::Loads { left, right } => (Some(left), Some(right), 0.0),
+            Vertical::Position { z } => (None, None, z),
+        };
+        solve_side(&mut self.left, &ctx, input, q_left, z, &mut out.left)?;
+        solve_side(&mut self.right, &ctx, input, q_right, z, &mut out.right)?;
+        Ok(())
+    }
+}
+
+fn check_input(input: &WheelsetInput) -> Result<(), InputError> {
+    use crate::error::{require_finite, require_non_negative};
+    require_finite("y", input.y)?;
+    require_finite("yaw", input.yaw)?;
+    require_finite("roll", input.roll)?;
+    match input.vertical {
+        Vertical::Loads { left, right } => {
+            require_non_negative("Qleft", left)?;
+            require_non_negative("Qright", right)?;
+        }
+        Vertical::Position { z } => {
+            require_finite("z", z)?;
+        }
+    }
+    match input.creepages {
+        Creepages::Kinematic {
+            vx,
+            vy,
+            yaw_rate,
+            omega,
+        } => {
+            require_finite("vx", vx)?;
+            require_finite("vy", vy)?;
+            require_finite("yawRate", yaw_rate)?;
+            require_finite("omega", omega)?;
+        }
+        Creepages::Prescribed { creepage, vx } => {
+            require_finite("xi", creepage.xi)?;
+            require_finite("eta", creepage.eta)?;
+            require_finite("phi", creepage.phi)?;
+            require_finite("vx", vx)?;
+        }
+    }
+    Ok(())
+}
+
+/// Material constants shared by both sides.
+struct Context {
+    e_star: f64,
+    shear_modulus: f64,
+    material: Material,
+}
+
+/// Creepages of the wheel relative to the rail at contact point `p` with contact angle `gamma`.
+fn creepages_at(
+    input: &WheelsetInput,
+    sigma: f64,
+    p: &ContactPoint,
+    gamma: f64,
+) -> (Creepage, f64) {
+    let (sin_g, cos_g) = gamma.sin_cos();
+    match input.creepages {
+        Creepages::Prescribed { creepage, vx } => (creepage, vx.abs()),
+        Creepages::Kinematic {
+            vx,
+            vy,
+            yaw_rate,
+            omega,
+        } => {
+            let v_ref = vx.abs().max(V_MIN);
+            // Lever arm from the wheelset centre to the contact point, track axes.
+            let arm = [p.longitudinal, sigma * p.lateral, p.rolling_radius];
+            // Ω = yaw rate about z, minus ω about the (yawed) axle direction (0, 1, 0) rotated.
+            let (sin_y, cos_y) = input.yaw.sin_cos();
+            let omega_vec = [omega * sin_y, -omega * cos_y, yaw_rate];
+            let cross = [
+                omega_vec[1] * arm[2] - omega_vec[2] * arm[1],
+                omega_vec[2] * arm[0] - omega_vec[0] * arm[2],
+                omega_vec[0] * arm[1] - omega_vec[1] * arm[0],
+            ];
+            let v = [vx + cross[0], vy + cross[1], cross[2]];
+            let creepage = Creepage {
+                xi: v[0] / v_ref,
+                eta: (v[1] * cos_g - sigma * v[2] * sin_g) / v_ref,
+                phi: (sigma * omega_vec[1] * sin_g + omega_vec[2] * cos_g) / v_ref,
+            };
+            (creepage, v_ref)
+        }
+    }
+}
+
+/// Evaluates one wheel lowered by `dz`; returns the vertical force of the rail on the wheel,
+/// upwards positive [N].
+fn evaluate_side(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    dz: f64,
+    with_tangential: bool,
+    out: &mut SideResult,
+) -> Result<f64, InputError> {
+    *out = SideResult {
+        z: dz,
+        ..SideResult::default()
+    };
+    let n = side.geometry.regions(dz, &mut side.regions);
+    // Regions come field side first; keep that order.
+    let mut upward = 0.0;
+    let mut force = [0.0; 3];
+    for k in 0..n {
+        let region = side.regions[k];
+        let deepest = side.geometry.point_at(region.deepest as f64);
+        let reference = side.geometry.point_at(region.centroid_index);
+        let gamma = reference.contact_angle;
+        let approach = region.depth * deepest.contact_angle.cos();
+        let patch = hertz_from_approach(deepest.curv_a, deepest.curv_b, approach, ctx.e_star)?;
+        if !(patch.a.is_normal() && patch.b.is_normal()) {
+            continue;
+        }
+        let (creepage, speed) = creepages_at(input, side.sigma, &reference, gamma);
+        let mut result = PatchResult {
+            fn_: patch.normal_force,
+            area: patch.area(),
+            pmax: patch.p0,
+            a: patch.a,
+            b: patch.b,
+            y_rail: reference.y_rail,
+            contact_angle: gamma,
+            rolling_radius: reference.rolling_radius,
+            penetration: approach,
+            creepage,
+            curv_a: deepest.curv_a,
+            curv_b: deepest.curv_b,
+            ..PatchResult::default()
+        };
+        if with_tangential {
+            let contact = EllipticContact {
+                a: patch.a,
+                b: patch.b,
+                normal_force: patch.normal_force,
+                shear_modulus: ctx.shear_modulus,
+                nu: ctx.material.poisson_ratio,
+                mu: ctx.material.friction,
+            };
+            let t = side.fastsim[out.n_patches].solve(&contact, &creepage, speed)?;
+            result.fx = t.fx;
+            result.fy = t.fy;
+            result.mz = t.mz;
+            result.adhesion_fraction = t.adhesion_fraction;
+            result.frictional_power = t.frictional_power;
+            result.max_traction = t.max_traction;
+        }
+        let (sin_g, cos_g) = gamma.sin_cos();
+        let s = side.sigma;
+        let e_y = [0.0, cos_g, -s * sin_g];
+        let e_z = [0.0, s * sin_g, cos_g];
+        for i in 0..3 {
+            force[i] += result.fx * [1.0, 0.0, 0.0][i] + result.fy * e_y[i] - result.fn_ * e_z[i];
+        }
+        upward += result.fn_ * cos_g + s * result.fy * sin_g;
+        out.patches[out.n_patches] = result;
+        out.n_patches += 1;
+    }
+    out.force = force;
+    Ok(upward)
+}
+
+fn solve_side(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    load: Option<f64>,
+    z: f64,
+    out: &mut SideResult,
+) -> Result<(), WheelsetError> {
+    let s = side.sigma;
+    let pose = SidePose {
+        lateral: s * input.y,
+        yaw: s * input.yaw,
+        roll: s * input.roll,
+    };
+    side.geometry
+        .search(&pose, &mut side.candidates)
+        .map_err(|reason| WheelsetError::NoContact {
+            side: side.name,
+            reason,
+        })?;
+    let touch = side
+        .candidates
+        .as_slice()
+        .iter()
+        .map(|c| c.gap)
+        .fold(f64::INFINITY, f64::min);
+    let Some(q) = load else {
+        evaluate_side(side, ctx, input, z, true, out)?;
+        return Ok(());
+    };
+    if q == 0.0 {
+        // Lift-off: the wheel just touches; no force.
+        *out = SideResult {
+            z: touch,
+            ..SideResult::default()
+        };
+        return Ok(());
+    }
+    // Bracket: at the touching height the force is zero; lower the wheel by a Hertzian estimate
+    // for the deepest point alone, doubling until the force exceeds the load.
+    let deepest = side
+        .candidates
+        .as_slice()
+        .iter()
+        .min_by(|a, b| a.gap.total_cmp(&b.gap))
+        .copied()
+        .expect("search returns at least one candidate");
+    let unit = hertz_from_approach(deepest.curv_a, deepest.curv_b, 1e-4, ctx.e_star)?;
+    let stiffness = unit.normal_force / 1e-4f64.powf(1.5);
+    let cos_g = deepest.contact_angle.cos().max(0.05);
+    let mut hi_pen = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
+    let (mut lo, mut f_lo) = (touch, -q);
+    let mut hi;
+    let mut f_hi;
+    loop {
+        hi = touch + hi_pen;
+        f_hi = evaluate_side(side, ctx, input, hi, true, out)? - q;
+        if f_hi > 0.0 || hi_pen > 0.05 {
+            break;
+        }
+        lo = hi;
+        f_lo = f_hi;
+        hi_pen *= 2.0;
+    }
+    // Illinois (modified regula falsi) on the residual: bracketing, superlinear.
+    let mut side_kept = 0i8;
+    let mut mid = hi;
+    for _ in 0..LOAD_ITERATIONS {
+        mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+        if !mid.is_finite() || mid <= lo.min(hi) || mid >= lo.max(hi) {
+            mid = 0.5 * (lo + hi);
+        }
+        let f_mid = evaluate_side(side, ctx, input, mid, true, out)? - q;
+        if f_mid.abs() <= LOAD_TOLERANCE * q {
+            return Ok(());
+        }
+        if (f_mid > 0.0) == (f_hi > 0.0) {
+            hi = mid;
+            f_hi = f_mid;
+            if side_kept == -1 {
+                f_lo *= 0.5;
+            }
+            side_kept = -1;
+        } else {
+            lo = mid;
+            f_lo = f_mid;
+            if side_kept == 1 {
+                f_hi *= 0.5;
+            }
+            side_kept = 1;
+        }
+    }
+    // The force can jump where two interpenetration regions merge (two Hertz patches become
+    // one); the bracket then closes on the jump. Take the bracket end nearer to the load.
+    let best = if f_lo.abs() < f_hi.abs() { lo } else { hi };
+    if best != mid {
+        evaluate_side(side, ctx, input, best, true, out)?;
+    }
+    Ok(())
+}
