@@ -21,7 +21,9 @@ struct ModelJson {
     model_identifier: String,
     description: String,
     default_experiment: DefaultExperiment,
-    variables: Vec<VariableJson>,
+    /// Variables, or groups `{"foreach": [KEY, [VALUES…]], "variables": [...]}` repeated once per
+    /// value with `{KEY}` replaced in names and descriptions (nested groups allowed).
+    variables: Vec<serde_json::Value>,
 }
 
 #[derive(Deserialize)]
@@ -47,6 +49,60 @@ struct VariableJson {
     #[serde(default)]
     min_exclusive: bool,
     description: String,
+}
+
+/// A model description with its variable groups expanded.
+struct Model {
+    model_name: String,
+    model_identifier: String,
+    description: String,
+    default_experiment: DefaultExperiment,
+    variables: Vec<VariableJson>,
+}
+
+/// Expands `foreach` groups depth-first, in the order written.
+fn expand(
+    entries: &[serde_json::Value],
+    subs: &mut Vec<(String, String)>,
+    out: &mut Vec<VariableJson>,
+) -> Result<(), String> {
+    let substitute = |text: &str, subs: &[(String, String)]| {
+        subs.iter().fold(text.to_string(), |t, (k, v)| {
+            t.replace(&format!("{{{k}}}"), v)
+        })
+    };
+    for entry in entries {
+        if let Some(spec) = entry.get("foreach") {
+            let key = spec
+                .get(0)
+                .and_then(|k| k.as_str())
+                .ok_or("foreach needs [KEY, [VALUES]]")?;
+            let values = spec
+                .get(1)
+                .and_then(|v| v.as_array())
+                .ok_or("foreach needs [KEY, [VALUES]]")?;
+            let inner = entry
+                .get("variables")
+                .and_then(|v| v.as_array())
+                .ok_or("foreach group needs \"variables\"")?;
+            for value in values {
+                let value = value.as_str().ok_or("foreach values must be strings")?;
+                subs.push((key.to_string(), value.to_string()));
+                expand(inner, subs, out)?;
+                subs.pop();
+            }
+        } else {
+            let mut v: VariableJson =
+                serde_json::from_value(entry.clone()).map_err(|e| format!("{entry}: {e}"))?;
+            v.name = substitute(&v.name, subs);
+            v.description = substitute(&v.description, subs);
+            if v.name.contains('{') {
+                return Err(format!("unexpanded placeholder in {}", v.name));
+            }
+            out.push(v);
+        }
+    }
+    Ok(())
 }
 
 /// SI base-unit exponents (kg, m, s, rad) of every unit a model may use.
@@ -90,8 +146,18 @@ fn main() {
     paths.sort();
     for path in paths {
         let text = std::fs::read_to_string(&path).expect("readable JSON");
-        let model: ModelJson =
+        let json: ModelJson =
             serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let mut variables = Vec::new();
+        expand(&json.variables, &mut Vec::new(), &mut variables)
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let model = Model {
+            model_name: json.model_name,
+            model_identifier: json.model_identifier,
+            description: json.description,
+            default_experiment: json.default_experiment,
+            variables,
+        };
         check_model(&model, &path);
         let body = xml_body(&model);
         let guid = guid_of(&body, &version);
@@ -106,7 +172,7 @@ fn main() {
     }
 }
 
-fn check_model(model: &ModelJson, path: &Path) {
+fn check_model(model: &Model, path: &Path) {
     let fail = |msg: String| panic!("{}: {msg}", path.display());
     let id = &model.model_identifier;
     if id.is_empty()
@@ -195,7 +261,7 @@ fn format_real(x: f64) -> String {
     s.replace("e0", "").replace('e', "E")
 }
 
-fn xml_body(model: &ModelJson) -> String {
+fn xml_body(model: &Model) -> String {
     let mut x = String::new();
     x.push_str("  <UnitDefinitions>\n");
     let used: BTreeSet<&str> = model
@@ -297,7 +363,7 @@ fn xml_body(model: &ModelJson) -> String {
     x
 }
 
-fn xml_document(model: &ModelJson, guid: &str, version: &str, body: &str) -> String {
+fn xml_document(model: &Model, guid: &str, version: &str, body: &str) -> String {
     format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
 <fmiModelDescription fmiVersion=\"2.0\" modelName=\"{name}\" guid=\"{guid}\" description=\"{desc}\" \
@@ -338,7 +404,7 @@ fn guid_of(body: &str, version: &str) -> String {
     )
 }
 
-fn rust_table(model: &ModelJson, guid: &str) -> String {
+fn rust_table(model: &Model, guid: &str) -> String {
     let mut r = String::new();
     let p = "crate::fmi::variables";
     writeln!(

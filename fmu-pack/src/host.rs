@@ -27,6 +27,19 @@ fn demo(model_identifier: &str) -> Option<Demo> {
             to: -0.004,
             columns: &["a", "b", "pmax", "Fy", "Mz", "adhesionFraction"],
         }),
+        "WheelRailContact" => Some(Demo {
+            sweep: "y",
+            from: 0.0,
+            to: 0.008,
+            columns: &[
+                "right.p2.Fn",
+                "right.p1.yRail",
+                "right.p1.contactAngle",
+                "right.p1.Fn",
+                "right.Fy",
+                "left.Fy",
+            ],
+        }),
         _ => None,
     }
 }

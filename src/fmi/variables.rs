@@ -148,6 +148,9 @@ impl Values {
     pub fn integer(&self, v: IntegerVar) -> i32 {
         self.integers[v.0]
     }
+    pub fn set_integer(&mut self, v: IntegerVar, k: i32) {
+        self.integers[v.0] = k;
+    }
     pub fn boolean(&self, v: BooleanVar) -> bool {
         self.booleans[v.0]
     }

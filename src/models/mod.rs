@@ -5,9 +5,10 @@
 use crate::fmi::model::ModelInfo;
 
 pub mod hertz_contact;
+pub mod wheel_rail_contact;
 
 /// Every model compiled into the library.
-pub static MODELS: &[&ModelInfo] = &[&hertz_contact::INFO];
+pub static MODELS: &[&ModelInfo] = &[&hertz_contact::INFO, &wheel_rail_contact::INFO];
 
 /// Looks a model up by its `modelIdentifier`.
 pub fn by_identifier(id: &str) -> Option<&'static ModelInfo> {

@@ -1,0 +1,365 @@
+//! FMU `WheelRailContact`: one wheelset on straight track, both wheels, from wheelset kinematics
+//! to creep forces and contact-patch summaries. Variables: `modelDescription/WheelRailContact.json`;
+//! physics: [`crate::wheelset`].
+
+use crate::fastsim::{Creepage, FastsimSettings, Flexibility, TractionBound};
+use crate::fmi::model::{InstanceContext, Model, ModelError, ModelInfo};
+use crate::fmi::variables::{IntegerVar, RealVar, Values};
+use crate::point_contact::Material;
+use crate::profile::{Profile, ProfileKind};
+use crate::track::TrackSetup;
+use crate::wheelset::{
+    Creepages, SideResult, Vertical, Wheelset, WheelsetError, WheelsetInput, WheelsetResult,
+    WheelsetSettings, MAX_PATCHES,
+};
+use std::path::{Path, PathBuf};
+
+/// Generated from `modelDescription/WheelRailContact.json` by `build.rs`.
+pub mod generated {
+    include!(concat!(env!("OUT_DIR"), "/WheelRailContact_vars.rs"));
+}
+use generated::var;
+
+pub static INFO: ModelInfo = ModelInfo {
+    model_identifier: generated::MODEL_IDENTIFIER,
+    guid: generated::GUID,
+    model_description_xml: generated::MODEL_DESCRIPTION_XML,
+    variables: &generated::VARIABLES,
+    counts: generated::COUNTS,
+    default_experiment: generated::DEFAULT_EXPERIMENT,
+    create,
+};
+
+fn create(context: &InstanceContext) -> Box<dyn Model> {
+    Box::new(WheelRailContact {
+        resource_dir: context.resource_dir.clone(),
+        solver: None,
+        result: WheelsetResult::default(),
+    })
+}
+
+struct WheelRailContact {
+    resource_dir: Option<PathBuf>,
+    solver: Option<Solver>,
+    result: WheelsetResult,
+}
+
+struct Solver {
+    wheelset: Wheelset,
+    vertical_by_position: bool,
+    creepage_prescribed: bool,
+}
+
+/// Output handles of one patch, in the order of [`patch_values`].
+type PatchVars = [RealVar; 17];
+
+fn patch_vars(right: bool, k: usize) -> PatchVars {
+    use var::*;
+    const LEFT: [PatchVars; MAX_PATCHES] = [
+        [
+            left_p1_Fn,
+            left_p1_Fx,
+            left_p1_Fy,
+            left_p1_Mz,
+            left_p1_area,
+            left_p1_pmax,
+            left_p1_length,
+            left_p1_width,
+            left_p1_yRail,
+            left_p1_contactAngle,
+            left_p1_rollingRadius,
+            left_p1_penetration,
+            left_p1_xi,
+            left_p1_eta,
+            left_p1_phi,
+            left_p1_adhesionFraction,
+            left_p1_frictionalPower,
+        ],
+        [
+            left_p2_Fn,
+            left_p2_Fx,
+            left_p2_Fy,
+            left_p2_Mz,
+            left_p2_area,
+            left_p2_pmax,
+            left_p2_length,
+            left_p2_width,
+            left_p2_yRail,
+            left_p2_contactAngle,
+            left_p2_rollingRadius,
+            left_p2_penetration,
+            left_p2_xi,
+            left_p2_eta,
+            left_p2_phi,
+            left_p2_adhesionFraction,
+            left_p2_frictionalPower,
+        ],
+        [
+            left_p3_Fn,
+            left_p3_Fx,
+            left_p3_Fy,
+            left_p3_Mz,
+            left_p3_area,
+            left_p3_pmax,
+            left_p3_length,
+            left_p3_width,
+            left_p3_yRail,
+            left_p3_contactAngle,
+            left_p3_rollingRadius,
+            left_p3_penetration,
+            left_p3_xi,
+            left_p3_eta,
+            left_p3_phi,
+            left_p3_adhesionFraction,
+            left_p3_frictionalPower,
+        ],
+    ];
+    const RIGHT: [PatchVars; MAX_PATCHES] = [
+        [
+            right_p1_Fn,
+            right_p1_Fx,
+            right_p1_Fy,
+            right_p1_Mz,
+            right_p1_area,
+            right_p1_pmax,
+            right_p1_length,
+            right_p1_width,
+            right_p1_yRail,
+            right_p1_contactAngle,
+            right_p1_rollingRadius,
+            right_p1_penetration,
+            right_p1_xi,
+            right_p1_eta,
+            right_p1_phi,
+            right_p1_adhesionFraction,
+            right_p1_frictionalPower,
+        ],
+        [
+            right_p2_Fn,
+            right_p2_Fx,
+            right_p2_Fy,
+            right_p2_Mz,
+            right_p2_area,
+            right_p2_pmax,
+            right_p2_length,
+            right_p2_width,
+            right_p2_yRail,
+            right_p2_contactAngle,
+            right_p2_rollingRadius,
+            right_p2_penetration,
+            right_p2_xi,
+            right_p2_eta,
+            right_p2_phi,
+            right_p2_adhesionFraction,
+            right_p2_frictionalPower,
+        ],
+        [
+            right_p3_Fn,
+            right_p3_Fx,
+            right_p3_Fy,
+            right_p3_Mz,
+            right_p3_area,
+            right_p3_pmax,
+            right_p3_length,
+            right_p3_width,
+            right_p3_yRail,
+            right_p3_contactAngle,
+            right_p3_rollingRadius,
+            right_p3_penetration,
+            right_p3_xi,
+            right_p3_eta,
+            right_p3_phi,
+            right_p3_adhesionFraction,
+            right_p3_frictionalPower,
+        ],
+    ];
+    if right {
+        RIGHT[k]
+    } else {
+        LEFT[k]
+    }
+}
+
+/// Totals of one side: nPatches, then Fx, Fy, Fz, z.
+fn side_vars(right: bool) -> (IntegerVar, [RealVar; 4]) {
+    use var::*;
+    if right {
+        (right_nPatches, [right_Fx, right_Fy, right_Fz, right_z])
+    } else {
+        (left_nPatches, [left_Fx, left_Fy, left_Fz, left_z])
+    }
+}
+
+/// A profile parameter: built-in name, or a path (relative paths: FMU resources first).
+fn load_profile(
+    spec: &str,
+    kind: ProfileKind,
+    smoothing: f64,
+    resources: Option<&Path>,
+) -> Result<Profile, ModelError> {
+    let in_resources = resources
+        .map(|dir| dir.join(spec))
+        .filter(|p| Path::new(spec).is_relative() && p.is_file());
+    let spec = in_resources
+        .as_deref()
+        .and_then(Path::to_str)
+        .unwrap_or(spec);
+    Profile::load(spec, kind, smoothing).map_err(|e| ModelError::Error(e.to_string()))
+}
+
+fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
+    let bound = match values.integer(var::tractionBound) {
+        2 => TractionBound::Parabolic,
+        _ => TractionBound::Elliptic,
+    };
+    let flexibility = match values.integer(var::flexibility) {
+        2 => Flexibility::Single,
+        3 => Flexibility::Blended,
+        _ => Flexibility::Three,
+    };
+    let count = |v: IntegerVar| usize::try_from(values.integer(v)).unwrap_or(1).max(1);
+    Ok(WheelsetSettings {
+        setup: TrackSetup {
+            rail_inclination: values.real(var::railInclination),
+            track_gauge: values.real(var::trackGauge),
+            flange_back_distance: values.real(var::flangeBackDistance),
+            wheel_radius: values.real(var::wheelRadius),
+            ..TrackSetup::default()
+        },
+        material: Material {
+            youngs_modulus: values.real(var::E),
+            poisson_ratio: values.real(var::nu),
+            friction: values.real(var::mu),
+        },
+        fastsim: FastsimSettings {
+            nx: count(var::nx),
+            ny: count(var::ny),
+            bound,
+            flexibility,
+        },
+        scan_step: values.real(var::scanStep),
+        b_min: values.real(var::bMin),
+    })
+}
+
+fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(), ModelError> {
+    let (n, totals) = side_vars(right);
+    values.set_integer(n, side.n_patches as i32);
+    let total_values = [side.force[0], side.force[1], side.force[2], side.z];
+    for (v, x) in totals.into_iter().zip(total_values) {
+        set_finite(values, v, x)?;
+    }
+    for k in 0..MAX_PATCHES {
+        let p = &side.patches[k];
+        let xs = [
+            p.fn_,
+            p.fx,
+            p.fy,
+            p.mz,
+            p.area,
+            p.pmax,
+            2.0 * p.a,
+            2.0 * p.b,
+            p.y_rail,
+            p.contact_angle,
+            p.rolling_radius,
+            p.penetration,
+            p.creepage.xi,
+            p.creepage.eta,
+            p.creepage.phi,
+            p.adhesion_fraction,
+            p.frictional_power,
+        ];
+        for (v, x) in patch_vars(right, k).into_iter().zip(xs) {
+            set_finite(values, v, x)?;
+        }
+    }
+    Ok(())
+}
+
+fn set_finite(values: &mut Values, v: RealVar, x: f64) -> Result<(), ModelError> {
+    if !x.is_finite() {
+        return Err(ModelError::Error(format!(
+            "internal error: non-finite output ({x}) in slot {}",
+            v.0
+        )));
+    }
+    values.set_real(v, x);
+    Ok(())
+}
+
+impl Model for WheelRailContact {
+    fn initialize(&mut self, values: &Values) -> Result<(), ModelError> {
+        let smoothing = values.real(var::profileSmoothing);
+        let resources = self.resource_dir.as_deref();
+        let wheel = load_profile(
+            values.string(var::wheelProfile),
+            ProfileKind::Wheel,
+            smoothing,
+            resources,
+        )?;
+        let rail = load_profile(
+            values.string(var::railProfile),
+            ProfileKind::Rail,
+            smoothing,
+            resources,
+        )?;
+        let wheelset = Wheelset::new(&wheel, &rail, settings(values)?)
+            .map_err(|e| ModelError::Error(e.to_string()))?;
+        self.solver = Some(Solver {
+            wheelset,
+            vertical_by_position: values.integer(var::verticalMode) == 2,
+            creepage_prescribed: values.integer(var::creepageMode) == 2,
+        });
+        Ok(())
+    }
+
+    fn evaluate(&mut self, values: &mut Values, _time: f64) -> Result<(), ModelError> {
+        let solver = self
+            .solver
+            .as_mut()
+            .ok_or_else(|| ModelError::Error("model used before initialization".into()))?;
+        let vx = values.real(var::vx);
+        let input = WheelsetInput {
+            y: values.real(var::y),
+            yaw: values.real(var::yaw),
+            roll: values.real(var::roll),
+            vertical: if solver.vertical_by_position {
+                Vertical::Position {
+                    z: values.real(var::z),
+                }
+            } else {
+                Vertical::Loads {
+                    left: values.real(var::Qleft),
+                    right: values.real(var::Qright),
+                }
+            },
+            creepages: if solver.creepage_prescribed {
+                Creepages::Prescribed {
+                    creepage: Creepage {
+                        xi: values.real(var::xi),
+                        eta: values.real(var::eta),
+                        phi: values.real(var::phi),
+                    },
+                    vx,
+                }
+            } else {
+                Creepages::Kinematic {
+                    vx,
+                    vy: values.real(var::vy),
+                    yaw_rate: values.real(var::yawRate),
+                    omega: values.real(var::omega),
+                }
+            },
+        };
+        match solver.wheelset.solve(&input, &mut self.result) {
+            Ok(()) => {}
+            Err(WheelsetError::Input(e)) => return Err(e.into()),
+            Err(e @ WheelsetError::NoContact { .. }) => {
+                return Err(ModelError::Discard(e.to_string()))
+            }
+        }
+        write_side(values, false, &self.result.left)?;
+        write_side(values, true, &self.result.right)
+    }
+}
