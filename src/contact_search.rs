@@ -124,6 +124,8 @@ pub enum SearchError {
     NoOverlap { lateral: f64 },
     /// The deepest point lies at the end of a profile (flange climb or wheel off the rail).
     AtProfileEnd { lateral: f64, y_rail: f64 },
+    /// At the deepest point the (yawed) wheel is seen outside its profile's lateral range.
+    OutsideWheel { lateral: f64, y_wheel: f64 },
 }
 
 impl std::fmt::Display for SearchError {
@@ -139,6 +141,12 @@ impl std::fmt::Display for SearchError {
                 "no rigid contact inside the profiles' range: the closest approach lies at the \
                  end of a profile (yRail = {y_rail} m) at lateral wheelset position {lateral} m \
                  (flange climb or the wheel leaving the rail)"
+            ),
+            SearchError::OutsideWheel { lateral, y_wheel } => write!(
+                f,
+                "no rigid contact inside the profiles' range: the closest approach lies outside \
+                 the wheel profile (wheel coordinate {y_wheel} m) at lateral wheelset position \
+                 {lateral} m (large yaw or the wheel leaving the rail)"
             ),
         }
     }
@@ -267,7 +275,12 @@ impl WheelOnRail {
             let y_w = w - offset;
             return (r0 + self.wheel.z(y_w), 0.0, y_w);
         }
-        // Newton on X for the maximum of q(X) = r(l)² − d².
+        // Newton on X for the maximum of q(X) = r(l)² − d², safeguarded: the lowest point of a
+        // wheel lies within |d| ≤ r0/2 of the axle plane for any yaw a wheelset can have (the
+        // lead is r·tan γ·tan ψ), and one step moves at most r0/10.
+        let x_of_d = |d: f64| (d - w * p.sin_yaw) / p.cos_yaw;
+        let (x_min, x_max) = (x_of_d(-0.5 * r0), x_of_d(0.5 * r0));
+        let max_step = 0.1 * r0;
         let mut x = -w * p.sin_yaw / p.cos_yaw;
         for _ in 0..4 {
             let l = -x * p.sin_yaw + w * p.cos_yaw;
@@ -280,7 +293,7 @@ impl WheelOnRail {
             if q2 >= 0.0 {
                 break;
             }
-            x -= q1 / q2;
+            x = (x - (q1 / q2).clamp(-max_step, max_step)).clamp(x_min, x_max);
         }
         let l = -x * p.sin_yaw + w * p.cos_yaw;
         let d = x * p.cos_yaw + w * p.sin_yaw;
@@ -313,9 +326,12 @@ impl WheelOnRail {
             (origin + y_r - p.lateral) * p.cos_roll + (rail.z(y_r) - z_centre) * p.sin_roll
         };
         let (a, b) = (mapped(r0), mapped(r1));
+        // A yawed wheel's axial coordinate at lateral W is l ≈ W / cos ψ (lowest point at
+        // d = 0), so the wheel profile covers W = l cos ψ.
+        let (wheel_lo, wheel_hi) = ((offset + w0) * p.cos_yaw, (offset + w1) * p.cos_yaw);
         // One scan step inside both ends, so the roll fixed point never leaves the rail.
-        let lo = a.min(b).max(offset + w0) + self.scan_step;
-        let hi = a.max(b).min(offset + w1) - self.scan_step;
+        let lo = a.min(b).max(wheel_lo) + self.scan_step;
+        let hi = a.max(b).min(wheel_hi) - self.scan_step;
         (hi - lo > 2.0 * self.scan_step).then_some((lo, hi))
     }
 
@@ -458,9 +474,9 @@ impl WheelOnRail {
             sin_roll: pose.roll.sin(),
             cos_roll: pose.roll.cos(),
         };
-        let (lo, hi) = self.overlap(&p).ok_or(SearchError::NoOverlap {
-            lateral: pose.lateral,
-        })?;
+        // `+ 0.0` turns −0 (a mirrored zero shift) into 0 for messages.
+        let lateral = pose.lateral + 0.0;
+        let (lo, hi) = self.overlap(&p).ok_or(SearchError::NoOverlap { lateral })?;
         let n = ((hi - lo) / self.scan_step).ceil() as usize;
         let step = (hi - lo) / n as f64;
         self.scan_lo = lo;
@@ -478,10 +494,7 @@ impl WheelOnRail {
         if deepest == 0 || deepest == n {
             let y_rail = samples[deepest].y_rail;
             self.samples = samples;
-            return Err(SearchError::AtProfileEnd {
-                lateral: pose.lateral,
-                y_rail,
-            });
+            return Err(SearchError::AtProfileEnd { lateral, y_rail });
         }
 
         // Interior local minima, scanned from the gauge side (small w) to the field side.

@@ -207,7 +207,8 @@ fn load_profile(
     Profile::load(spec, kind, smoothing).map_err(|e| ModelError::Error(e.to_string()))
 }
 
-fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
+/// The wheelset settings the parameters describe.
+pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
     let bound = match values.integer(var::tractionBound) {
         2 => TractionBound::Parabolic,
         _ => TractionBound::Elliptic,
@@ -240,6 +241,48 @@ fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
         scan_step: values.real(var::scanStep),
         b_min: values.real(var::bMin),
     })
+}
+
+/// The wheelset input the inputs describe (`verticalMode` = 2 → `vertical_by_position`,
+/// `creepageMode` = 2 → `creepage_prescribed`).
+pub fn input(
+    values: &Values,
+    vertical_by_position: bool,
+    creepage_prescribed: bool,
+) -> WheelsetInput {
+    let vx = values.real(var::vx);
+    WheelsetInput {
+        y: values.real(var::y),
+        yaw: values.real(var::yaw),
+        roll: values.real(var::roll),
+        vertical: if vertical_by_position {
+            Vertical::Position {
+                z: values.real(var::z),
+            }
+        } else {
+            Vertical::Loads {
+                left: values.real(var::Qleft),
+                right: values.real(var::Qright),
+            }
+        },
+        creepages: if creepage_prescribed {
+            Creepages::Prescribed {
+                creepage: Creepage {
+                    xi: values.real(var::xi),
+                    eta: values.real(var::eta),
+                    phi: values.real(var::phi),
+                },
+                vx,
+            }
+        } else {
+            Creepages::Kinematic {
+                vx,
+                vy: values.real(var::vy),
+                yaw_rate: values.real(var::yawRate),
+                omega: values.real(var::omega),
+            }
+        },
+    }
 }
 
 fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(), ModelError> {
@@ -319,39 +362,11 @@ impl Model for WheelRailContact {
             .solver
             .as_mut()
             .ok_or_else(|| ModelError::Error("model used before initialization".into()))?;
-        let vx = values.real(var::vx);
-        let input = WheelsetInput {
-            y: values.real(var::y),
-            yaw: values.real(var::yaw),
-            roll: values.real(var::roll),
-            vertical: if solver.vertical_by_position {
-                Vertical::Position {
-                    z: values.real(var::z),
-                }
-            } else {
-                Vertical::Loads {
-                    left: values.real(var::Qleft),
-                    right: values.real(var::Qright),
-                }
-            },
-            creepages: if solver.creepage_prescribed {
-                Creepages::Prescribed {
-                    creepage: Creepage {
-                        xi: values.real(var::xi),
-                        eta: values.real(var::eta),
-                        phi: values.real(var::phi),
-                    },
-                    vx,
-                }
-            } else {
-                Creepages::Kinematic {
-                    vx,
-                    vy: values.real(var::vy),
-                    yaw_rate: values.real(var::yawRate),
-                    omega: values.real(var::omega),
-                }
-            },
-        };
+        let input = input(
+            values,
+            solver.vertical_by_position,
+            solver.creepage_prescribed,
+        );
         match solver.wheelset.solve(&input, &mut self.result) {
             Ok(()) => {}
             Err(WheelsetError::Input(e)) => return Err(e.into()),

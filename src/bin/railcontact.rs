@@ -1,0 +1,729 @@
+//! `railcontact`: the `WheelRailContact` FMU's model on the command line.
+//!
+//! * `railcontact solve [CASE.json]` — one evaluation, printed as JSON: every output by name, and
+//!   per patch in contact a strip table of the patch;
+//! * `railcontact sweep [CASE.json] [--from Y0] [--to Y1] [--step DY]` — a text table over the
+//!   lateral shift `y`.
+//!
+//! A case is a JSON object whose keys are the FMU's parameter and input names; values are checked
+//! against the generated variable table exactly as `fmi2Set*` checks them. The outputs come from
+//! the FMU's own model (`INFO.create`, `initialize`, `evaluate`), so the command and the FMU give
+//! identical numbers; the strip tables come from the same wheelset solver run directly (its patch
+//! semi-axes and curvatures are not FMU outputs).
+//!
+//! Exit codes: 0 success, 1 usage / case / profile / value error, 2 no contact inside the profiles.
+
+#[path = "railcontact/json.rs"]
+mod json;
+
+use railcontact::fmi::model::{InstanceContext, Model, ModelError};
+use railcontact::fmi::variables::{Causality, Values, VarInfo, VarType};
+use railcontact::models::wheel_rail_contact::{self as wrc, generated::var, INFO};
+use railcontact::profile::{Profile, ProfileKind, BUILTIN_NAMES};
+use railcontact::wheelset::{PatchResult, Wheelset, WheelsetResult, MAX_PATCHES};
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::Path;
+
+const USAGE: &str = "\
+railcontact - the WheelRailContact FMU's wheel-rail contact model on the command line
+
+Usage:
+  railcontact solve [CASE.json]
+  railcontact sweep [CASE.json] [--from Y0] [--to Y1] [--step DY]
+  railcontact help | --help | -h
+
+CASE.json is a JSON object whose keys are parameters and inputs of the WheelRailContact FMU
+(modelDescription/WheelRailContact.json), in SI units, e.g.
+  {\"y\": 0.004, \"Qright\": 90000, \"wheelProfile\": \"worn.prw\", \"mu\": 0.4}
+Keys not given keep their start values; unknown keys, wrong types and values outside a variable's
+range are errors. Without a file (or with '-' for standard input): the built-in S1002 wheel on
+UIC60 rails at the start values. Relative profile paths are looked up next to the case file
+first, then in the working directory.
+
+solve   Evaluates the model once (the FMU's own code) and prints a JSON object: every output by
+        name (nPatches as integers), and \"strips\": for each patch in contact (\"left.p1\", ...)
+        the patch cut into 21 strips across the rolling direction, each with
+        s [m] (lateral coordinate in the contact plane, towards the field side), yRail [m],
+        xLead, xTrail [m] (leading and trailing edge), pmax [Pa] (strip maximum pressure),
+        A, B [1/m] (relative curvatures).
+sweep   Evaluates the model over the lateral shift y from Y0 to Y1 in steps of DY (metres;
+        default -0.002 to 0.008, step 0.0005; the case's y is ignored) and prints a table per
+        wheel: number of patches, then per patch yRail [mm], contact angle [rad], normal force
+        Fn [kN], rolling radius [mm], and the wheel's total lateral force Fy [kN]. Shifts where
+        the wheel leaves the profiles get a note instead of numbers.
+
+Exit codes: 0 success; 1 bad arguments, case file, profile file or value; 2 (solve) the pose
+has no contact inside the profiles.
+";
+
+/// Strips per patch in `solve`'s strip tables.
+const STRIPS: usize = 21;
+/// Most rows a sweep may have.
+const MAX_ROWS: usize = 100_000;
+
+/// Why the command failed, with its exit code.
+#[derive(Debug)]
+enum Failure {
+    /// Bad arguments, case, profile or value: exit code 1.
+    Error(String),
+    /// The pose has no contact inside the profiles: exit code 2.
+    NoContact(String),
+}
+
+impl Failure {
+    fn code(&self) -> i32 {
+        match self {
+            Failure::Error(_) => 1,
+            Failure::NoContact(_) => 2,
+        }
+    }
+}
+
+impl From<ModelError> for Failure {
+    fn from(e: ModelError) -> Self {
+        match e {
+            ModelError::Error(m) => Failure::Error(m),
+            ModelError::Discard(m) => Failure::NoContact(format!("no contact: {m}")),
+        }
+    }
+}
+
+fn main() {
+    let code = match run() {
+        Ok(code) => code,
+        Err(f) => {
+            let (Failure::Error(m) | Failure::NoContact(m)) = &f;
+            eprintln!("railcontact: {m}");
+            f.code()
+        }
+    };
+    std::process::exit(code);
+}
+
+fn run() -> Result<i32, Failure> {
+    let args = std::env::args_os()
+        .skip(1)
+        .map(|a| {
+            a.into_string()
+                .map_err(|a| Failure::Error(format!("argument {a:?} is not valid UTF-8")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let Some((command, rest)) = args.split_first() else {
+        eprint!("{USAGE}");
+        return Ok(1);
+    };
+    if is_help(command) || rest.iter().any(|a| is_help(a)) {
+        emit(USAGE)?;
+        return Ok(0);
+    }
+    match command.as_str() {
+        "solve" => {
+            let case = positional(rest, &[])?.case;
+            emit(&solve(case.as_deref())?)?;
+            Ok(0)
+        }
+        "sweep" => {
+            let a = positional(rest, &["--from", "--to", "--step"])?;
+            let option = |name: &str, default: f64| -> Result<f64, Failure> {
+                match a.options.iter().rev().find(|(k, _)| k == name) {
+                    None => Ok(default),
+                    Some((_, v)) => v.trim().parse::<f64>().map_err(|_| {
+                        Failure::Error(format!("{name} {v}: expected a number in metres"))
+                    }),
+                }
+            };
+            let range = SweepRange {
+                from: option("--from", -0.002)?,
+                to: option("--to", 0.008)?,
+                step: option("--step", 0.0005)?,
+            };
+            let (table, errors) = sweep(a.case.as_deref(), range)?;
+            emit(&table)?;
+            Ok(if errors { 1 } else { 0 })
+        }
+        other => Err(Failure::Error(format!(
+            "unknown command '{other}' (commands: solve, sweep, help; see railcontact --help)"
+        ))),
+    }
+}
+
+fn is_help(a: &str) -> bool {
+    matches!(a, "-h" | "--help" | "help")
+}
+
+/// Writes `text` to standard output (an error such as a closed pipe is a failure, not a panic).
+fn emit(text: &str) -> Result<(), Failure> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| Failure::Error(format!("cannot write the output: {e}")))
+}
+
+/// Arguments after the command: at most one case file, and `--name value` / `--name=value`.
+struct Args {
+    case: Option<String>,
+    options: Vec<(String, String)>,
+}
+
+fn positional(rest: &[String], known: &[&str]) -> Result<Args, Failure> {
+    let mut args = Args {
+        case: None,
+        options: Vec::new(),
+    };
+    let mut it = rest.iter();
+    while let Some(a) = it.next() {
+        if a.starts_with("--") {
+            let (name, inline) = match a.split_once('=') {
+                Some((n, v)) => (n, Some(v.to_string())),
+                None => (a.as_str(), None),
+            };
+            if !known.contains(&name) {
+                return Err(Failure::Error(format!(
+                    "unknown option '{name}' (see railcontact --help)"
+                )));
+            }
+            let value = match inline {
+                Some(v) => v,
+                None => it
+                    .next()
+                    .cloned()
+                    .ok_or_else(|| Failure::Error(format!("option {name} needs a value")))?,
+            };
+            args.options.push((name.to_string(), value));
+        } else if a.starts_with('-') && a != "-" && a.parse::<f64>().is_err() {
+            return Err(Failure::Error(format!(
+                "unknown option '{a}' (see railcontact --help)"
+            )));
+        } else if let Some(first) = &args.case {
+            return Err(Failure::Error(format!(
+                "more than one case file ('{first}', '{a}')"
+            )));
+        } else {
+            args.case = Some(a.clone());
+        }
+    }
+    Ok(args)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cases
+
+/// The FMU's values at their start values, overridden by the case file (if any).
+fn load_case(path: Option<&str>) -> Result<Values, Failure> {
+    let mut values = Values::from_start(INFO.variables, INFO.counts);
+    let Some(path) = path else {
+        return Ok(values);
+    };
+    let (text, source, dir) = if path == "-" {
+        let mut text = String::new();
+        std::io::Read::read_to_string(&mut std::io::stdin(), &mut text)
+            .map_err(|e| Failure::Error(format!("cannot read the case from stdin: {e}")))?;
+        (text, "case on stdin".to_string(), None)
+    } else {
+        let source = format!("case file '{path}'");
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Failure::Error(format!("{source}: cannot read the file: {e}")))?;
+        (text, source, Path::new(path).parent())
+    };
+    let doc = json::parse(&text).map_err(|e| Failure::Error(format!("{source}, {e}")))?;
+    apply_case(&mut values, &doc, dir).map_err(|m| Failure::Error(format!("{source}: {m}")))?;
+    Ok(values)
+}
+
+/// Sets the variables a case document names, checked as `fmi2Set*` checks them.
+fn apply_case(values: &mut Values, doc: &json::Value, dir: Option<&Path>) -> Result<(), String> {
+    let members = doc.as_object().ok_or_else(|| {
+        format!(
+            "expected a JSON object of parameter and input names, found {}",
+            doc.type_name()
+        )
+    })?;
+    for (key, value) in members {
+        let info = INFO.variable(key).ok_or_else(|| unknown_key(key, value))?;
+        if info.causality == Causality::Output {
+            return Err(format!(
+                "{} = {value}: '{key}' is an output of WheelRailContact; a case sets parameters \
+                 and inputs only",
+                json::quote(key)
+            ));
+        }
+        set_value(values, info, value, dir)?;
+    }
+    Ok(())
+}
+
+fn unknown_key(key: &str, value: &json::Value) -> String {
+    let names: Vec<&str> = INFO
+        .variables
+        .iter()
+        .filter(|v| v.causality != Causality::Output)
+        .map(|v| v.name)
+        .collect();
+    format!(
+        "unknown key {} = {value}: not a parameter or input of WheelRailContact (allowed keys: \
+         {})",
+        json::quote(key),
+        names.join(", ")
+    )
+}
+
+/// " [unit]" or "".
+fn unit_suffix(info: &VarInfo) -> String {
+    if info.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" [{}]", info.unit)
+    }
+}
+
+fn set_value(
+    values: &mut Values,
+    info: &VarInfo,
+    value: &json::Value,
+    dir: Option<&Path>,
+) -> Result<(), String> {
+    let out_of_range = |text: &str| {
+        format!(
+            "{} = {text} is outside the allowed range {}{}",
+            info.name,
+            info.allowed,
+            unit_suffix(info)
+        )
+    };
+    let wrong_type = |expected: &str| {
+        let found = match value {
+            json::Value::Number(..) if info.ty == VarType::Integer => {
+                "a number that is not an integer"
+            }
+            other => other.type_name(),
+        };
+        format!(
+            "{} = {value} has the wrong type: expected {expected}{}, found {found}",
+            info.name,
+            unit_suffix(info),
+        )
+    };
+    match (info.ty, value) {
+        (VarType::Real, json::Value::Number(x, text)) => {
+            if !info.accepts_real(*x) {
+                return Err(out_of_range(text));
+            }
+            values.reals[info.slot] = *x;
+        }
+        (VarType::Real, _) => {
+            return Err(wrong_type(&format!("a number in {}", info.allowed)));
+        }
+        (VarType::Integer, json::Value::Number(x, text)) if x.fract() == 0.0 => {
+            let k = if x.abs() <= f64::from(i32::MAX) {
+                *x as i32
+            } else {
+                return Err(out_of_range(text));
+            };
+            if !info.accepts_integer(k) {
+                return Err(out_of_range(text));
+            }
+            values.integers[info.slot] = k;
+        }
+        (VarType::Integer, _) => return Err(wrong_type(&format!("an {}", info.allowed))),
+        (VarType::Boolean, json::Value::Bool(b)) => values.booleans[info.slot] = *b,
+        (VarType::Boolean, _) => return Err(wrong_type("true or false")),
+        (VarType::String, json::Value::String(s)) => {
+            values.strings[info.slot] = resolve_profile(s, dir);
+        }
+        (VarType::String, _) => {
+            return Err(wrong_type(
+                "a string (a built-in profile name or a file path)",
+            ))
+        }
+    }
+    Ok(())
+}
+
+/// A relative profile path that names a file next to the case file becomes that file's path;
+/// built-in names and everything else are kept as written.
+fn resolve_profile(spec: &str, dir: Option<&Path>) -> String {
+    let t = spec.trim();
+    let builtin = BUILTIN_NAMES.iter().any(|b| b.eq_ignore_ascii_case(t));
+    match dir {
+        Some(dir) if !builtin && !t.is_empty() && Path::new(t).is_relative() => {
+            let next_to_case = dir.join(t);
+            if next_to_case.is_file() {
+                next_to_case.to_string_lossy().into_owned()
+            } else {
+                spec.to_string()
+            }
+        }
+        _ => spec.to_string(),
+    }
+}
+
+/// The FMU's model, initialized with `values`' parameters (profiles loaded).
+fn model(values: &Values) -> Result<Box<dyn Model>, Failure> {
+    let mut model = (INFO.create)(&InstanceContext::default());
+    model.initialize(values)?;
+    Ok(model)
+}
+
+// ---------------------------------------------------------------------------------------------
+// solve
+
+fn solve(case: Option<&str>) -> Result<String, Failure> {
+    let mut values = load_case(case)?;
+    let mut model = model(&values)?;
+    model.evaluate(&mut values, 0.0)?;
+    let patches = wheelset_result(&values)?;
+    check_same(&values, &patches)?;
+
+    let mut out = String::from("{\n");
+    for info in INFO
+        .variables
+        .iter()
+        .filter(|v| v.causality == Causality::Output)
+    {
+        let value = match info.ty {
+            VarType::Real => json::number(values.reals[info.slot]),
+            VarType::Integer => values.integers[info.slot].to_string(),
+            VarType::Boolean => values.booleans[info.slot].to_string(),
+            VarType::String => json::quote(&values.strings[info.slot]),
+        };
+        let _ = writeln!(out, "  {}: {value},", json::quote(info.name));
+    }
+    out.push_str("  \"strips\": {");
+    let mut first = true;
+    for (side, result) in [("left", &patches.left), ("right", &patches.right)] {
+        for (k, patch) in result.patches[..result.n_patches].iter().enumerate() {
+            out.push_str(if first { "\n" } else { ",\n" });
+            first = false;
+            let _ = write!(out, "    \"{side}.p{}\": [", k + 1);
+            for (i, strip) in strips(patch).iter().enumerate() {
+                let _ = write!(
+                    out,
+                    "{}\n      {{\"s\": {}, \"yRail\": {}, \"xLead\": {}, \"xTrail\": {}, \
+                     \"pmax\": {}, \"A\": {}, \"B\": {}}}",
+                    if i == 0 { "" } else { "," },
+                    json::number(strip.s),
+                    json::number(strip.y_rail),
+                    json::number(strip.x_lead),
+                    json::number(strip.x_trail),
+                    json::number(strip.pmax),
+                    json::number(strip.a),
+                    json::number(strip.b),
+                );
+            }
+            out.push_str("\n    ]");
+        }
+    }
+    out.push_str(if first { "}\n}\n" } else { "\n  }\n}\n" });
+    Ok(out)
+}
+
+/// The wheelset solved directly with the model's own mapping from values to settings and input
+/// (for the patch semi-axes and curvatures, which are not FMU outputs).
+fn wheelset_result(values: &Values) -> Result<WheelsetResult, Failure> {
+    let smoothing = values.real(var::profileSmoothing);
+    let load = |spec: &str, kind| {
+        Profile::load(spec, kind, smoothing).map_err(|e| Failure::Error(e.to_string()))
+    };
+    let wheel = load(values.string(var::wheelProfile), ProfileKind::Wheel)?;
+    let rail = load(values.string(var::railProfile), ProfileKind::Rail)?;
+    let mut wheelset = Wheelset::new(&wheel, &rail, wrc::settings(values)?)
+        .map_err(|e| Failure::Error(e.to_string()))?;
+    let input = wrc::input(
+        values,
+        values.integer(var::verticalMode) == 2,
+        values.integer(var::creepageMode) == 2,
+    );
+    let mut result = WheelsetResult::default();
+    wheelset
+        .solve(&input, &mut result)
+        .map_err(|e| Failure::Error(format!("internal error: the direct solve failed: {e}")))?;
+    Ok(result)
+}
+
+/// The direct solve must reproduce the FMU outputs bit for bit (same code, same inputs).
+fn check_same(values: &Values, result: &WheelsetResult) -> Result<(), Failure> {
+    for (side, r) in [("left", &result.left), ("right", &result.right)] {
+        let n = output_integer(values, &format!("{side}.nPatches"));
+        let same = usize::try_from(n) == Ok(r.n_patches)
+            && r.patches.iter().enumerate().all(|(k, p)| {
+                output_real(values, &format!("{side}.p{}.Fn", k + 1)) == p.fn_
+                    && output_real(values, &format!("{side}.p{}.width", k + 1)) == 2.0 * p.b
+            });
+        if !same {
+            return Err(Failure::Error(format!(
+                "internal error: the strip tables' solve differs from the FMU outputs on the \
+                 {side} wheel"
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn output_real(values: &Values, name: &str) -> f64 {
+    let info = INFO.variable(name).expect("output of the generated table");
+    values.reals[info.slot]
+}
+
+fn output_integer(values: &Values, name: &str) -> i32 {
+    let info = INFO.variable(name).expect("output of the generated table");
+    values.integers[info.slot]
+}
+
+/// One strip of a patch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Strip {
+    s: f64,
+    y_rail: f64,
+    x_lead: f64,
+    x_trail: f64,
+    pmax: f64,
+    a: f64,
+    b: f64,
+}
+
+/// The Hertz ellipse of `p` cut into [`STRIPS`] strips of equal width across the rolling
+/// direction, sampled at the strip centres.
+fn strips(p: &PatchResult) -> Vec<Strip> {
+    let cos_g = p.contact_angle.cos();
+    (0..STRIPS)
+        .map(|i| {
+            let s = p.b * ((2 * i + 1) as f64 / STRIPS as f64 - 1.0);
+            let root = (1.0 - (s / p.b).powi(2)).max(0.0).sqrt();
+            Strip {
+                s,
+                y_rail: p.y_rail + s * cos_g,
+                x_lead: p.a * root,
+                x_trail: -p.a * root,
+                pmax: p.pmax * root,
+                a: p.curv_a,
+                b: p.curv_b,
+            }
+        })
+        .collect()
+}
+
+// ---------------------------------------------------------------------------------------------
+// sweep
+
+#[derive(Debug, Clone, Copy)]
+struct SweepRange {
+    from: f64,
+    to: f64,
+    step: f64,
+}
+
+/// One wheel in one row.
+struct SideRow {
+    /// Per patch: yRail [m], contact angle [rad], Fn [N], rolling radius [m].
+    patches: Vec<[f64; 4]>,
+    fy: f64,
+}
+
+enum Row {
+    Values([SideRow; 2]),
+    Note(String),
+}
+
+/// Returns the table and whether any row failed with an error (other than leaving the profiles).
+fn sweep(case: Option<&str>, range: SweepRange) -> Result<(String, bool), Failure> {
+    let y_info = INFO.variable("y").expect("input y");
+    for (name, x) in [("--from", range.from), ("--to", range.to)] {
+        if !y_info.accepts_real(x) {
+            return Err(Failure::Error(format!(
+                "{name} {x}: y = {x} is outside the allowed range {}{}",
+                y_info.allowed,
+                unit_suffix(y_info)
+            )));
+        }
+    }
+    if !(range.step.is_finite() && range.step > 0.0) {
+        return Err(Failure::Error(format!(
+            "--step {}: the step must be a number > 0 [m]",
+            range.step
+        )));
+    }
+    let span = (range.to - range.from).abs();
+    let intervals = (span / range.step * (1.0 + 1e-9)).floor();
+    if intervals >= MAX_ROWS as f64 {
+        return Err(Failure::Error(format!(
+            "--step {}: {} rows, at most {MAX_ROWS} are allowed",
+            range.step,
+            intervals + 1.0
+        )));
+    }
+    let direction = if range.to >= range.from { 1.0 } else { -1.0 };
+
+    let mut values = load_case(case)?;
+    let mut model = model(&values)?;
+    let mut rows = Vec::new();
+    let mut errors = false;
+    for k in 0..=intervals as usize {
+        // Rounded to 1e-12 m so that the printed shifts are exact (no "-0.000").
+        let y = (range.from + direction * k as f64 * range.step) * 1e12;
+        let y = y.round() / 1e12 + 0.0;
+        values.set_real(var::y, y);
+        let row = match model.evaluate(&mut values, 0.0) {
+            Ok(()) => Row::Values(["left", "right"].map(|side| side_row(&values, side))),
+            Err(ModelError::Discard(m)) => Row::Note(format!("no contact: {m}")),
+            Err(ModelError::Error(m)) => {
+                errors = true;
+                Row::Note(format!("error: {m}"))
+            }
+        };
+        rows.push((y, row));
+    }
+    Ok((table(&values, range, &rows), errors))
+}
+
+fn side_row(values: &Values, side: &str) -> SideRow {
+    let n = usize::try_from(output_integer(values, &format!("{side}.nPatches")))
+        .unwrap_or(0)
+        .min(MAX_PATCHES);
+    let patches = (1..=n)
+        .map(|k| {
+            ["yRail", "contactAngle", "Fn", "rollingRadius"]
+                .map(|q| output_real(values, &format!("{side}.p{k}.{q}")))
+        })
+        .collect();
+    SideRow {
+        patches,
+        fy: output_real(values, &format!("{side}.Fy")),
+    }
+}
+
+fn table(values: &Values, range: SweepRange, rows: &[(f64, Row)]) -> String {
+    // Patch column groups per wheel: as many as the sweep needs (at least one).
+    let groups: [usize; 2] = [0, 1].map(|s| {
+        rows.iter()
+            .filter_map(|(_, r)| match r {
+                Row::Values(sides) => Some(sides[s].patches.len()),
+                Row::Note(_) => None,
+            })
+            .max()
+            .unwrap_or(0)
+            .max(1)
+    });
+    let mut header = vec!["y[mm]".to_string()];
+    for (s, letter) in ["L", "R"].iter().enumerate() {
+        header.push(format!("{letter}.n"));
+        for k in 1..=groups[s] {
+            for q in ["yRail[mm]", "gamma[rad]", "Fn[kN]", "r[mm]"] {
+                header.push(format!("{letter}.p{k}.{q}"));
+            }
+        }
+        header.push(format!("{letter}.Fy[kN]"));
+    }
+    let widths: Vec<usize> = header.iter().map(|h| h.len().max(9)).collect();
+
+    let mut out = String::new();
+    let mode = if values.integer(var::verticalMode) == 2 {
+        "vertical position z prescribed".to_string()
+    } else {
+        format!(
+            "Qleft = {} kN, Qright = {} kN",
+            values.real(var::Qleft) / 1e3,
+            values.real(var::Qright) / 1e3
+        )
+    };
+    let _ = writeln!(
+        out,
+        "# railcontact sweep: WheelRailContact, wheel {}, rail {}, {mode}; y from {} to {} mm, \
+         step {} mm",
+        values.string(var::wheelProfile),
+        values.string(var::railProfile),
+        range.from * 1e3,
+        range.to * 1e3,
+        range.step * 1e3
+    );
+    let _ = writeln!(
+        out,
+        "# y = lateral shift of the wheelset; L/R = left/right wheel: n = number of patches; pK = \
+         patch K (field side first): yRail, gamma = contact angle, Fn = normal force, r = rolling \
+         radius; Fy = total lateral force of the rail on the wheel ('-': no such patch)"
+    );
+    let cells: Vec<String> = header
+        .iter()
+        .zip(&widths)
+        .map(|(h, w)| format!("{h:>w$}"))
+        .collect();
+    let _ = writeln!(out, "{}", cells.join(" "));
+
+    for (y, row) in rows {
+        let mut cells = vec![format!("{:.3}", y * 1e3)];
+        match row {
+            Row::Note(note) => {
+                let _ = writeln!(out, "{:>w$} -- {note}", cells[0], w = widths[0]);
+                continue;
+            }
+            Row::Values(sides) => {
+                for (s, side) in sides.iter().enumerate() {
+                    cells.push(side.patches.len().to_string());
+                    for k in 0..groups[s] {
+                        match side.patches.get(k) {
+                            Some([y_rail, gamma, fn_, r]) => cells.extend([
+                                format!("{:.3}", y_rail * 1e3),
+                                format!("{gamma:.5}"),
+                                format!("{:.3}", fn_ / 1e3),
+                                format!("{:.3}", r * 1e3),
+                            ]),
+                            None => cells.extend(std::iter::repeat_n("-".to_string(), 4)),
+                        }
+                    }
+                    cells.push(format!("{:.3}", side.fy / 1e3));
+                }
+            }
+        }
+        let cells: Vec<String> = cells
+            .iter()
+            .zip(&widths)
+            .map(|(c, w)| format!("{c:>w$}"))
+            .collect();
+        let _ = writeln!(out, "{}", cells.join(" "));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_cut_the_ellipse() {
+        let p = PatchResult {
+            a: 0.006,
+            b: 0.004,
+            pmax: 1e9,
+            y_rail: 0.001,
+            contact_angle: 0.3,
+            curv_a: 1.2,
+            curv_b: 3.4,
+            ..PatchResult::default()
+        };
+        let s = strips(&p);
+        assert_eq!(s.len(), STRIPS);
+        let mid = s[STRIPS / 2];
+        assert!(mid.s.abs() < 1e-15 && (mid.x_lead - 0.006).abs() < 1e-15);
+        assert!((mid.pmax - 1e9).abs() < 1e-3 && mid.x_trail == -mid.x_lead);
+        for st in &s {
+            let r = (st.x_lead / p.a).powi(2) + (st.s / p.b).powi(2);
+            assert!((r - 1.0).abs() < 1e-12);
+            assert!((st.y_rail - (0.001 + st.s * 0.3f64.cos())).abs() < 1e-15);
+            assert_eq!((st.a, st.b), (1.2, 3.4));
+        }
+        assert!(s[0].s < 0.0 && s[STRIPS - 1].s > 0.0);
+    }
+
+    #[test]
+    fn options_and_case_file() {
+        let args: Vec<String> = ["c.json", "--from", "-0.001", "--to=0.002"]
+            .map(String::from)
+            .to_vec();
+        let a = positional(&args, &["--from", "--to", "--step"]).unwrap();
+        assert_eq!(a.case.as_deref(), Some("c.json"));
+        assert_eq!(a.options[0], ("--from".into(), "-0.001".into()));
+        assert_eq!(a.options[1], ("--to".into(), "0.002".into()));
+        assert!(positional(&["--bogus".to_string()], &[]).is_err());
+        assert!(positional(&["a".to_string(), "b".to_string()], &[]).is_err());
+    }
+}

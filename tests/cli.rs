@@ -1,0 +1,346 @@
+//! The `railcontact` command, run as a process: `solve` (JSON with every WheelRailContact output
+//! and strip tables; identical to the FMU's model run in-process), case-file errors and exit
+//! codes, and `sweep`.
+
+#[path = "../src/bin/railcontact/json.rs"]
+mod json;
+
+use json::Value;
+use railcontact::fmi::model::InstanceContext;
+use railcontact::fmi::variables::{Causality, Values, VarType};
+use railcontact::models::wheel_rail_contact::INFO;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_railcontact"))
+        .args(args)
+        .output()
+        .expect("railcontact runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).expect("UTF-8 output")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8(o.stderr.clone()).expect("UTF-8 messages")
+}
+
+/// A fresh file in a per-process temporary directory.
+fn temp_file(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("railcontact-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// Runs `solve` and parses its JSON.
+fn solve(args: &[&str]) -> Value {
+    let o = run(args);
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
+    json::parse(&stdout(&o)).unwrap_or_else(|e| panic!("invalid JSON: {e}"))
+}
+
+fn outputs() -> impl Iterator<Item = &'static railcontact::fmi::variables::VarInfo> {
+    INFO.variables
+        .iter()
+        .filter(|v| v.causality == Causality::Output)
+}
+
+fn real(doc: &Value, name: &str) -> f64 {
+    doc.get(name)
+        .and_then(Value::as_f64)
+        .unwrap_or_else(|| panic!("{name} missing"))
+}
+
+/// Every output present, finite, integers written as integers; strips for every patch in
+/// contact and for no other.
+fn check_solution(doc: &Value) {
+    for v in outputs() {
+        let Some(Value::Number(x, text)) = doc.get(v.name) else {
+            panic!("output {} missing or not a number", v.name);
+        };
+        assert!(x.is_finite(), "{} = {x}", v.name);
+        if v.ty == VarType::Integer {
+            assert!(text.parse::<i64>().is_ok(), "{} = {text}", v.name);
+        }
+    }
+    let members = doc.as_object().unwrap();
+    assert_eq!(
+        members.len(),
+        outputs().count() + 1,
+        "outputs and strips only"
+    );
+    let strips = doc
+        .get("strips")
+        .and_then(Value::as_object)
+        .expect("strips");
+    let mut expected = Vec::new();
+    for side in ["left", "right"] {
+        let n = real(doc, &format!("{side}.nPatches")) as usize;
+        assert!(n >= 1, "{side} wheel in contact");
+        for k in 1..=n {
+            expected.push(format!("{side}.p{k}"));
+        }
+    }
+    let keys: Vec<&str> = strips.iter().map(|(k, _)| k.as_str()).collect();
+    assert_eq!(keys, expected);
+    for (patch, table) in strips {
+        let rows = table.as_array().expect("strip array");
+        assert_eq!(rows.len(), 21, "{patch}");
+        let p = |q: &str| real(doc, &format!("{patch}.{q}"));
+        let (half_length, half_width) = (p("length") / 2.0, p("width") / 2.0);
+        let mut peak: f64 = 0.0;
+        let mut last_s = f64::NEG_INFINITY;
+        for row in rows {
+            let f = |q: &str| {
+                let x = row.get(q).and_then(Value::as_f64).expect(q);
+                assert!(x.is_finite(), "{patch}.{q} = {x}");
+                x
+            };
+            let (s, x_lead, x_trail, pmax) = (f("s"), f("xLead"), f("xTrail"), f("pmax"));
+            assert!(s > last_s && s.abs() < half_width, "{patch}: s = {s}");
+            last_s = s;
+            assert!(x_lead > 0.0 && x_lead <= half_length && x_trail == -x_lead);
+            assert!(pmax > 0.0 && pmax <= p("pmax"));
+            let expected_y = p("yRail") + s * p("contactAngle").cos();
+            assert!((f("yRail") - expected_y).abs() < 1e-12, "{patch}");
+            assert!(f("A") > 0.0 && f("B") > 0.0);
+            peak = peak.max(pmax);
+        }
+        // The middle strip runs through the centre of the ellipse.
+        let mid = &rows[10];
+        assert!(mid.get("s").and_then(Value::as_f64).unwrap().abs() < 1e-15);
+        assert_eq!(peak, p("pmax"), "{patch}");
+        assert!((mid.get("xLead").and_then(Value::as_f64).unwrap() - half_length).abs() < 1e-15);
+    }
+}
+
+/// The FMU's model run in-process on the start values with `changes`.
+fn direct(changes: &[(&str, f64)]) -> Values {
+    let mut values = Values::from_start(INFO.variables, INFO.counts);
+    for (name, x) in changes {
+        let v = INFO.variable(name).unwrap();
+        values.reals[v.slot] = *x;
+    }
+    let mut model = (INFO.create)(&InstanceContext::default());
+    model.initialize(&values).unwrap();
+    model.evaluate(&mut values, 0.0).unwrap();
+    values
+}
+
+fn assert_equals_direct(doc: &Value, values: &Values) {
+    for v in outputs() {
+        let expected = match v.ty {
+            VarType::Real => values.reals[v.slot],
+            VarType::Integer => f64::from(values.integers[v.slot]),
+            _ => unreachable!("outputs are Real or Integer"),
+        };
+        assert_eq!(real(doc, v.name), expected, "{}", v.name);
+    }
+}
+
+#[test]
+fn solve_without_a_file_gives_every_output_and_strips() {
+    let doc = solve(&["solve"]);
+    check_solution(&doc);
+    assert_equals_direct(&doc, &direct(&[]));
+    // Centred wheelset: symmetric, each wheel carries its 78.5 kN.
+    assert_eq!(real(&doc, "left.p1.yRail"), real(&doc, "right.p1.yRail"));
+    assert!((real(&doc, "right.Fz") + 78_500.0).abs() < 1e-3);
+}
+
+#[test]
+fn solve_with_a_case_file_follows_qright_and_y() {
+    let base = solve(&["solve"]);
+    let case = temp_file("case.json", "{\"Qright\": 100000, \"y\": 0.003}\n");
+    let doc = solve(&["solve", case.to_str().unwrap()]);
+    check_solution(&doc);
+    assert_equals_direct(&doc, &direct(&[("Qright", 1e5), ("y", 0.003)]));
+    assert!((real(&doc, "right.Fz") + 1e5).abs() < 1e-3);
+    assert!((real(&doc, "left.Fz") + 78_500.0).abs() < 1e-3);
+    // Shifted towards the right rail: the right contact moves to the gauge side (negative yRail)
+    // and steepens, and the left one moves away from it.
+    assert!(real(&doc, "right.p1.yRail") < real(&base, "right.p1.yRail") - 1e-3);
+    assert!(real(&doc, "right.p1.contactAngle") > real(&base, "right.p1.contactAngle"));
+    assert!(real(&doc, "left.p1.yRail") > real(&base, "left.p1.yRail") + 1e-3);
+    assert!(real(&doc, "right.p1.Fn") > real(&base, "right.p1.Fn") + 20e3);
+}
+
+#[test]
+fn case_errors_name_key_value_and_range() {
+    for (name, text, expected) in [
+        (
+            "unknown.json",
+            "{\"y\": 0.001, \"gauge\": 1.5}",
+            &["unknown key \"gauge\" = 1.5", "allowed keys: wheelProfile"][..],
+        ),
+        (
+            "nu.json",
+            "{\"nu\": 0.7}",
+            &["nu = 0.7 is outside the allowed range [0, 0.5]"][..],
+        ),
+        (
+            "mu.json",
+            "{\"mu\": 0}",
+            &["mu = 0 is outside the allowed range (0, 10]"][..],
+        ),
+        (
+            "type.json",
+            "{\"Qright\": \"90 kN\"}",
+            &["Qright = \"90 kN\" has the wrong type: expected a number in [0, 10000000] [N]"][..],
+        ),
+        (
+            "int.json",
+            "{\"nx\": 2.5}",
+            &["nx = 2.5 has the wrong type: expected an integer in [1, 1000]"][..],
+        ),
+        (
+            "output.json",
+            "{\"left.Fy\": 0}",
+            &["'left.Fy' is an output"][..],
+        ),
+        (
+            "syntax.json",
+            "{\n  \"y\": 0.001,\n}",
+            &["syntax.json', line 3, column 1: expected a key in double quotes"][..],
+        ),
+    ] {
+        let case = temp_file(name, text);
+        let o = run(&["solve", case.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{name}: {err}");
+        assert!(o.stdout.is_empty(), "{name}");
+        assert!(err.contains(name), "{name}: {err}");
+        for e in expected {
+            assert!(err.contains(e), "{name}: {err}");
+        }
+    }
+    let o = run(&["solve", "/nonexistent/case.json"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("case file '/nonexistent/case.json': cannot read the file"));
+}
+
+#[test]
+fn malformed_profile_file_names_file_line_and_reason() {
+    // Non-numeric value on line 7 of a Simpack wheel file.
+    let prw = "header.begin\n type = 1\nheader.end\npoint.begin\n0 0\n1 1\n2 abc\n3 1\npoint.end\n";
+    let profile = temp_file("bad.prw", prw);
+    // Relative to the case file's directory, whatever the working directory.
+    let case = temp_file("bad_profile.json", "{\"wheelProfile\": \"bad.prw\"}");
+    let o = Command::new(env!("CARGO_BIN_EXE_railcontact"))
+        .args(["solve", case.to_str().unwrap()])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    let located = format!(
+        "profile file '{}', line 7: non-numeric value \"abc\"",
+        profile.display()
+    );
+    assert!(err.contains(&located), "{err}");
+}
+
+#[test]
+fn pose_off_the_rail_exits_with_2() {
+    // On standard gauge the built-in S1002 still finds the rail at |y| <= 0.05 (its flange tip
+    // rides on the crown); on 1.5 m gauge the left wheel falls inside its rail at y = 0.04.
+    let case = temp_file("off.json", "{\"y\": 0.04, \"trackGauge\": 1.5}");
+    let o = run(&["solve", case.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(o.stdout.is_empty());
+    assert!(
+        err.contains("no contact: left wheel: no rigid contact inside the profiles' range"),
+        "{err}"
+    );
+}
+
+#[test]
+fn sweep_prints_a_header_and_one_row_per_shift() {
+    let o = run(&["sweep"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = stdout(&o);
+    let lines: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).collect();
+    let header: Vec<&str> = lines[0].split_whitespace().collect();
+    assert_eq!(header[0], "y[mm]");
+    for col in [
+        "L.n",
+        "L.p1.yRail[mm]",
+        "L.p1.gamma[rad]",
+        "L.p1.Fn[kN]",
+        "L.p1.r[mm]",
+    ] {
+        assert!(header.contains(&col), "{col} in {header:?}");
+    }
+    assert_eq!(header.last(), Some(&"R.Fy[kN]"));
+    let rows = &lines[1..];
+    assert_eq!(rows.len(), 21, "-2 … 8 mm in 0.5 mm steps");
+    for (k, row) in rows.iter().enumerate() {
+        let cells: Vec<&str> = row.split_whitespace().collect();
+        assert_eq!(cells.len(), header.len(), "{row}");
+        let y: f64 = cells[0].parse().unwrap();
+        assert!((y - (-2.0 + 0.5 * k as f64)).abs() < 1e-9, "{row}");
+    }
+    // Row at y = 3 mm equals the FMU outputs, rounded as printed.
+    let values = direct(&[("y", 0.003)]);
+    let fy = values.reals[INFO.variable("right.Fy").unwrap().slot];
+    let row: Vec<&str> = rows[10].split_whitespace().collect();
+    assert_eq!(row[0], "3.000");
+    assert_eq!(*row.last().unwrap(), format!("{:.3}", fy / 1e3));
+
+    // Shifts where a wheel leaves the profiles get a note, and the sweep goes on.
+    let case = temp_file("wide_gauge.json", "{\"trackGauge\": 1.5}");
+    let o = run(&[
+        "sweep",
+        case.to_str().unwrap(),
+        "--from",
+        "0.03",
+        "--to=0.045",
+        "--step",
+        "0.005",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = stdout(&o);
+    let rows: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .collect();
+    assert_eq!(rows.len(), 4, "{text}");
+    assert!(!rows[0].contains("no contact"), "{text}");
+    for row in &rows[2..] {
+        assert!(row.contains("-- no contact: left wheel"), "{row}");
+    }
+
+    let o = run(&["sweep", "--step", "0"]);
+    assert_eq!(o.status.code(), Some(1));
+    let o = run(&["sweep", "--from", "0.2"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("y = 0.2 is outside the allowed range [-0.05, 0.05] [m]"));
+}
+
+#[test]
+fn help_and_bad_arguments() {
+    for args in [&["--help"][..], &["-h"], &["help"], &["solve", "--help"]] {
+        let o = run(args);
+        assert_eq!(o.status.code(), Some(0));
+        let text = stdout(&o);
+        assert!(
+            text.contains("railcontact solve [CASE.json]") && text.contains("railcontact sweep")
+        );
+    }
+    for args in [
+        &[][..],
+        &["frobnicate"],
+        &["solve", "--bogus"],
+        &["solve", "a", "b"],
+    ] {
+        let o = run(args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        assert!(!stderr(&o).is_empty());
+    }
+}
