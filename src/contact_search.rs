@@ -39,6 +39,11 @@ pub const MIN_PROMINENCE: f64 = 1e-6;
 /// Default sampling step of the gap function [m].
 pub const DEFAULT_SCAN_STEP: f64 = 5e-4;
 
+/// A closest approach this close to the flange tip, or beyond it, means the wheel rides on its
+/// flange [m]: within 2 mm of the top of the flange's tip radius (S1002: 12–20 mm) the contact
+/// plane is inclined by less than ~10°, i.e. the flange no longer guides the wheel.
+pub const FLANGE_TIP_MARGIN: f64 = 2e-3;
+
 /// Default floor of the relative lateral curvature B [1/m] (CONTACT: 1e−4 1/mm).
 pub const DEFAULT_B_MIN: f64 = 0.1;
 
@@ -126,6 +131,8 @@ pub enum SearchError {
     AtProfileEnd { lateral: f64, y_rail: f64 },
     /// At the deepest point the (yawed) wheel is seen outside its profile's lateral range.
     OutsideWheel { lateral: f64, y_wheel: f64 },
+    /// The wheel rides on its flange tip (or beyond it): it is derailing.
+    FlangeClimb { lateral: f64, y_wheel: f64 },
 }
 
 impl std::fmt::Display for SearchError {
@@ -141,6 +148,11 @@ impl std::fmt::Display for SearchError {
                 "no rigid contact inside the profiles' range: the closest approach lies at the \
                  end of a profile (yRail = {y_rail} m) at lateral wheelset position {lateral} m \
                  (flange climb or the wheel leaving the rail)"
+            ),
+            SearchError::FlangeClimb { lateral, y_wheel } => write!(
+                f,
+                "flange climb: the wheel rides on its flange tip (wheel coordinate {y_wheel} m) at \
+                 lateral wheelset position {lateral} m; the wheelset is derailing"
             ),
             SearchError::OutsideWheel { lateral, y_wheel } => write!(
                 f,
@@ -167,6 +179,17 @@ pub struct Region {
     pub deepest: usize,
     /// Largest vertical interpenetration [m].
     pub depth: f64,
+}
+
+/// The flange tip of a wheel profile: the highest point (largest radius increase z) on the
+/// flange side (y < 0), from the profile's data points.
+fn flange_tip(wheel: &Profile) -> f64 {
+    let (ys, zs) = wheel.points();
+    ys.iter()
+        .zip(zs)
+        .filter(|(y, _)| **y < 0.0)
+        .max_by(|a, b| a.1.total_cmp(b.1))
+        .map_or(f64::NEG_INFINITY, |(y, _)| *y)
 }
 
 /// A sample of the gap function.
@@ -196,6 +219,8 @@ pub struct WheelOnRail {
     setup: TrackSetup,
     scan_step: f64,
     b_min: f64,
+    /// Wheel-profile coordinate of the flange tip (highest z on the flange side, y < 0) [m].
+    flange_tip: f64,
     samples: Vec<GapSample>,
     /// Lateral coordinate of the first sample and the sample spacing of the last search [m].
     scan_lo: f64,
@@ -221,6 +246,7 @@ impl WheelOnRail {
             )));
         }
         let rail = MountedRail::new(rail, setup)?;
+        let flange_tip = flange_tip(&wheel);
         let (r0, r1) = rail.profile().y_range();
         let capacity = ((r1 - r0) / scan_step).ceil() as usize + 3;
         Ok(Self {
@@ -229,6 +255,7 @@ impl WheelOnRail {
             setup: *setup,
             scan_step,
             b_min,
+            flange_tip,
             samples: Vec::with_capacity(capacity),
             scan_lo: 0.0,
             scan_dw: scan_step,
@@ -495,6 +522,16 @@ impl WheelOnRail {
             let y_rail = samples[deepest].y_rail;
             self.samples = samples;
             return Err(SearchError::AtProfileEnd { lateral, y_rail });
+        }
+        let (wheel_lo, wheel_hi) = self.wheel.y_range();
+        let y_wheel = samples[deepest].y_wheel;
+        if !(wheel_lo..=wheel_hi).contains(&y_wheel) {
+            self.samples = samples;
+            return Err(SearchError::OutsideWheel { lateral, y_wheel });
+        }
+        if y_wheel < self.flange_tip + FLANGE_TIP_MARGIN {
+            self.samples = samples;
+            return Err(SearchError::FlangeClimb { lateral, y_wheel });
         }
 
         // Interior local minima, scanned from the gauge side (small w) to the field side.

@@ -245,7 +245,13 @@ impl Instance {
                 .get(vr as usize)
                 .is_some_and(|v| v.causality == Causality::Output)
         });
-        if !reads_output || self.state == State::Error {
+        // After a failed or final step the outputs keep their last good values: the inputs that
+        // failed are not evaluated again.
+        let settled = matches!(
+            self.state,
+            State::StepFailed | State::Terminated | State::Error
+        );
+        if !reads_output || settled {
             return Ok(());
         }
         self.refresh().map_err(|e| self.model_failure(e, "fmi2Get"))

@@ -1,39 +1,99 @@
-"""Session fixtures for the host tests of the packed HertzContact FMU.
+"""Session fixtures and shared helpers for the host tests of the packed FMUs.
 
-The FMU is taken from ``$RAILCONTACT_FMU_DIR/HertzContact.fmu`` when that variable is set, else
-from ``<repo>/target/fmu/HertzContact.fmu`` (written by ``cargo run --release -p fmu-pack``).
-A missing FMU is a failure, never a skip: these tests are the acceptance gate of the packed FMU.
+The FMUs are taken from ``$RAILCONTACT_FMU_DIR/<Model>.fmu`` when that variable is set, else
+from ``<repo>/target/fmu/<Model>.fmu`` (written by ``cargo run --release -p fmu-pack``).
+A missing FMU is a failure, never a skip: these tests are the acceptance gate of the packed FMUs.
+
+The fixtures ``fmu_path``, ``model_description``, ``unzipdir`` and ``shared_library`` are those
+of HertzContact (``test_hertz_contact.py``); ``wrc_fmu_path``, ``wrc_model_description`` and
+``wrc_unzipdir`` those of WheelRailContact (``test_wheel_rail_contact.py``). The helpers both
+modules use live here: ``bits``, the log router ``LOG`` (one per process — FMPy's native logger
+proxy keeps a single Python logger in a static variable, so two routers would steal each other's
+messages) and the ``Slave`` wrapper.
 """
 
 from __future__ import annotations
 
+import itertools
+import math
 import os
+import shutil
+import threading
+from ctypes import byref
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Iterable, Mapping
 
 import fmpy
+import numpy as np
 import pytest
+from fmpy import calloc, free
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import (
+    FMU2Slave,
+    fmi2CallbackAllocateMemoryTYPE,
+    fmi2CallbackFreeMemoryTYPE,
+    fmi2CallbackFunctions,
+    fmi2CallbackLoggerTYPE,
+    fmi2Discard,
+    fmi2Error,
+    fmi2Warning,
+)
+from fmpy.logging import addLoggerProxy
 from fmpy.model_description import ModelDescription, read_model_description
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 FMU_FILE_NAME = "HertzContact.fmu"
+WRC_FMU_FILE_NAME = "WheelRailContact.fmu"
 FMU_DIR_ENV = "RAILCONTACT_FMU_DIR"
+
+STEP = 1e-3  # s; the default experiments' step size (both models)
+
+EXPECTED_FMI2_EXPORTS = frozenset(
+    {
+        # 25 common functions
+        "fmi2GetTypesPlatform", "fmi2GetVersion", "fmi2SetDebugLogging", "fmi2Instantiate",
+        "fmi2FreeInstance", "fmi2SetupExperiment", "fmi2EnterInitializationMode",
+        "fmi2ExitInitializationMode", "fmi2Terminate", "fmi2Reset", "fmi2GetReal",
+        "fmi2GetInteger", "fmi2GetBoolean", "fmi2GetString", "fmi2SetReal", "fmi2SetInteger",
+        "fmi2SetBoolean", "fmi2SetString", "fmi2GetFMUstate", "fmi2SetFMUstate",
+        "fmi2FreeFMUstate", "fmi2SerializedFMUstateSize", "fmi2SerializeFMUstate",
+        "fmi2DeSerializeFMUstate", "fmi2GetDirectionalDerivative",
+        # 9 co-simulation functions
+        "fmi2SetRealInputDerivatives", "fmi2GetRealOutputDerivatives", "fmi2DoStep",
+        "fmi2CancelStep", "fmi2GetStatus", "fmi2GetRealStatus", "fmi2GetIntegerStatus",
+        "fmi2GetBooleanStatus", "fmi2GetStringStatus",
+    }
+)
+
+
+def require_tool(name: str) -> str:
+    path = shutil.which(name)
+    if path is None:
+        pytest.fail(f"`{name}` is not installed (Debian: binutils / libc-bin); this check cannot run")
+    return path
+
+
+def packed_fmu(file_name: str) -> Path:
+    """Path of a packed FMU; fails the test (never skips) when it is missing."""
+    env = os.environ.get(FMU_DIR_ENV)
+    fmu_dir = Path(env) if env else REPO_ROOT / "target" / "fmu"
+    path = (fmu_dir / file_name).resolve()
+    if not path.is_file():
+        origin = f"${FMU_DIR_ENV}={env!r}" if env else f"the default {REPO_ROOT / 'target' / 'fmu'}"
+        pytest.fail(
+            f"{file_name} not found at {path} (FMU directory from {origin}). Build and pack it "
+            f"with `cargo run --release -p fmu-pack` in {REPO_ROOT}, or point {FMU_DIR_ENV} at the "
+            f"directory that contains {file_name}.",
+            pytrace=False,
+        )
+    return path
 
 
 @pytest.fixture(scope="session")
 def fmu_path() -> Path:
-    """Path of the packed FMU under test."""
-    env = os.environ.get(FMU_DIR_ENV)
-    fmu_dir = Path(env) if env else REPO_ROOT / "target" / "fmu"
-    path = (fmu_dir / FMU_FILE_NAME).resolve()
-    if not path.is_file():
-        origin = f"${FMU_DIR_ENV}={env!r}" if env else f"the default {REPO_ROOT / 'target' / 'fmu'}"
-        pytest.fail(
-            f"{FMU_FILE_NAME} not found at {path} (FMU directory from {origin}). Build and pack it "
-            f"with `cargo run --release -p fmu-pack` in {REPO_ROOT}, or point {FMU_DIR_ENV} at the "
-            f"directory that contains {FMU_FILE_NAME}.",
-            pytrace=False,
-        )
-    return path
+    """Path of the packed HertzContact FMU."""
+    return packed_fmu(FMU_FILE_NAME)
 
 
 @pytest.fixture(scope="session")
@@ -57,3 +117,200 @@ def shared_library(unzipdir: Path, model_description: ModelDescription) -> Path:
     if not path.is_file():
         pytest.fail(f"the FMU has no binaries/linux64/{identifier}.so", pytrace=False)
     return path
+
+
+# ---------------------------------------------------------------------------------------------
+# WheelRailContact
+
+
+@pytest.fixture(scope="session")
+def wrc_fmu_path() -> Path:
+    """Path of the packed WheelRailContact FMU."""
+    return packed_fmu(WRC_FMU_FILE_NAME)
+
+
+@pytest.fixture(scope="session")
+def wrc_model_description(wrc_fmu_path: Path) -> ModelDescription:
+    return read_model_description(str(wrc_fmu_path), validate=True)
+
+
+@pytest.fixture(scope="session")
+def wrc_unzipdir(wrc_fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    target = tmp_path_factory.mktemp("WheelRailContact_unzipped")
+    return Path(fmpy.extract(str(wrc_fmu_path), unzipdir=str(target)))
+
+
+# ---------------------------------------------------------------------------------------------
+# Shared helpers
+
+
+def bits(values: np.ndarray) -> np.ndarray:
+    """The IEEE-754 bit patterns of float64 values, for bit-for-bit comparisons."""
+    return np.ascontiguousarray(values, dtype=np.float64).view(np.uint64)
+
+
+# ---------------------------------------------------------------------------------------------
+# Logging: one process-wide logger, messages routed per instance by componentEnvironment
+
+
+@dataclass(frozen=True)
+class LogMessage:
+    instance: str
+    status: int
+    category: str
+    text: str
+
+
+def _decode(b: bytes | None) -> str:
+    return b.decode("utf-8", errors="replace") if b is not None else ""
+
+
+class LogRouter:
+    """Collects the FMU's log messages per instance.
+
+    fmpy's proxy formats the printf-style message and calls a single static Python logger; each
+    instance gets its own `componentEnvironment` key so its messages land in its own list.
+    """
+
+    def __init__(self) -> None:
+        self._sinks: dict[int, list[LogMessage]] = {}
+        self._keys = itertools.count(1)
+        self._lock = threading.Lock()
+        self.unrouted: list[LogMessage] = []
+        self._callback = fmi2CallbackLoggerTYPE(self._on_message)  # kept alive for the process
+
+    def _on_message(self, env, instance, status, category, message) -> None:
+        msg = LogMessage(_decode(instance), int(status), _decode(category), _decode(message))
+        self._sinks.get(env or 0, self.unrouted).append(msg)
+
+    def new_callbacks(self) -> tuple[fmi2CallbackFunctions, list[LogMessage]]:
+        """A callbacks struct for one instance and the list its messages arrive in."""
+        with self._lock:
+            key = next(self._keys)
+            sink: list[LogMessage] = []
+            self._sinks[key] = sink
+        callbacks = fmi2CallbackFunctions()
+        callbacks.logger = self._callback
+        callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        callbacks.componentEnvironment = key
+        # (Re)installs this router as the proxy's target, whatever simulate_fmu installed before.
+        addLoggerProxy(byref(callbacks))
+        return callbacks, sink
+
+
+LOG = LogRouter()
+
+
+# ---------------------------------------------------------------------------------------------
+# One FMU2Slave instance with name-based access
+
+
+class Slave:
+    """An FMU2Slave of the extracted FMU with name-based get/set, time tracking and its log."""
+
+    _names = itertools.count()
+
+    def __init__(self, md: ModelDescription, unzipdir: Path, name: str | None = None) -> None:
+        self.md = md
+        self.vars = {v.name: v for v in md.modelVariables}
+        # Real outputs (Integer outputs such as WheelRailContact's nPatches are read with get()).
+        self.output_names = [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
+        self._output_vrs = [self.vars[n].valueReference for n in self.output_names]
+        # Default names: the model identifier's capitals in lower case and a counter (hc0, wrc1, …).
+        prefix = "".join(c for c in md.coSimulation.modelIdentifier if c.isupper()).lower()
+        self.name = name or f"{prefix}{next(Slave._names)}"
+        self.callbacks, self.messages = LOG.new_callbacks()
+        self.fmu = FMU2Slave(
+            guid=md.guid,
+            unzipDirectory=str(unzipdir),
+            modelIdentifier=md.coSimulation.modelIdentifier,
+            instanceName=self.name,
+        )
+        try:
+            self.fmu.instantiate(callbacks=self.callbacks)
+        except Exception:
+            self.fmu.freeLibrary()
+            raise
+        self.time = 0.0
+        self._freed = False
+
+    # -- values
+    def set(self, **values: float | int | str | bool) -> None:
+        """Sets variables one call each, so a rejected value is attributed to its variable."""
+        for name, value in values.items():
+            v = self.vars[name]
+            if v.type == "Integer":
+                self.fmu.setInteger([v.valueReference], [int(value)])
+            elif v.type == "Real":
+                self.fmu.setReal([v.valueReference], [float(value)])
+            elif v.type == "String":
+                self.fmu.setString([v.valueReference], [str(value)])
+            elif v.type == "Boolean":
+                self.fmu.setBoolean([v.valueReference], [bool(value)])
+            else:  # pragma: no cover
+                raise TypeError(f"{name}: {v.type}")
+
+    def get(self, name: str) -> float | int | str | bool:
+        v = self.vars[name]
+        getter = {
+            "Integer": self.fmu.getInteger,
+            "String": self.fmu.getString,
+            "Boolean": self.fmu.getBoolean,
+        }.get(v.type, self.fmu.getReal)
+        value = getter([v.valueReference])[0]
+        return value.decode("utf-8") if isinstance(value, bytes) else value
+
+    def output_array(self) -> np.ndarray:
+        """All outputs, in model-description order; never NaN or ±∞ (docs/conventions.md)."""
+        values = np.array(self.fmu.getReal(self._output_vrs), dtype=np.float64)
+        bad = {n: x for n, x in zip(self.output_names, values) if not math.isfinite(x)}
+        assert not bad, f"{self.name}: non-finite outputs {bad}"
+        return values
+
+    def outputs(self) -> dict[str, float]:
+        return dict(zip(self.output_names, self.output_array().tolist()))
+
+    # -- life cycle
+    def initialize(
+        self,
+        params: Mapping[str, float | int] | None = None,
+        inputs: Mapping[str, float] | None = None,
+        stop_time: float | None = None,
+    ) -> "Slave":
+        self.fmu.setupExperiment(startTime=0.0, stopTime=stop_time)
+        self.set(**(params or {}))
+        self.set(**(inputs or {}))
+        self.fmu.enterInitializationMode()
+        self.fmu.exitInitializationMode()
+        self.time = 0.0
+        return self
+
+    def step(self, h: float = STEP) -> None:
+        self.fmu.doStep(currentCommunicationPoint=self.time, communicationStepSize=h)
+        self.time = self.time + h  # the FMU computes its time the same way
+
+    def run(self, sequence: Iterable[Mapping[str, float]], h: float = STEP) -> np.ndarray:
+        """For each entry: set those inputs, step, read all outputs. Returns one row per step."""
+        rows = []
+        for inputs in sequence:
+            self.set(**inputs)
+            self.step(h)
+            rows.append(self.output_array())
+        return np.array(rows)
+
+    def errors(self) -> list[LogMessage]:
+        return [m for m in self.messages if m.status >= fmi2Error]
+
+    def warnings(self) -> list[LogMessage]:
+        return [m for m in self.messages if m.status in (fmi2Warning, fmi2Discard)]
+
+    def free(self) -> None:
+        if self._freed:
+            return
+        self._freed = True
+        try:
+            self.fmu.terminate()
+        except FMICallException:
+            pass  # not initialized, or already terminated: freeing is still legal
+        self.fmu.freeInstance()

@@ -15,7 +15,7 @@ Every tolerance is justified where it is used. Nothing is skipped: a test that c
 
 FMPy's native logger proxy (fmpy/logging) keeps *one* Python logger per process in a static
 variable, so per-instance message lists are built by routing on `componentEnvironment`, which the
-FMU hands back unchanged as the logger's first argument (see `LogRouter`).
+FMU hands back unchanged as the logger's first argument (see `LogRouter` in conftest.py).
 """
 
 from __future__ import annotations
@@ -24,34 +24,21 @@ import itertools
 import json
 import math
 import re
-import shutil
 import subprocess
 import sys
-import threading
 from concurrent.futures import ThreadPoolExecutor
-from ctypes import byref
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Iterable, Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 import pytest
-from fmpy import calloc, free, simulate_fmu
+from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import (
-    FMU2Slave,
-    fmi2CallbackAllocateMemoryTYPE,
-    fmi2CallbackFreeMemoryTYPE,
-    fmi2CallbackFunctions,
-    fmi2CallbackLoggerTYPE,
-    fmi2Discard,
-    fmi2Error,
-    fmi2LastSuccessfulTime,
-    fmi2Warning,
-)
-from fmpy.logging import addLoggerProxy
+from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2Error, fmi2LastSuccessfulTime
 from fmpy.model_description import ModelDescription
 from fmpy.validation import validate_fmu
+
+from conftest import EXPECTED_FMI2_EXPORTS, LOG, STEP, Slave, bits, require_tool
 
 HERE = Path(__file__).resolve().parent
 REPO_ROOT = HERE.parents[1]
@@ -73,188 +60,12 @@ REF_PARAMS = {"E": E_ORACLE, "nu": NU, "mu": MU}
 REF_INPUTS = {"N": N_REF, "A": A_REF, "B": B_REF, "V": V_REF, "xi": 0.0, "eta": ETA_REF, "phi": PHI_REF}
 INPUT_NAMES = ("N", "A", "B", "V", "xi", "eta", "phi")
 
-STEP = 1e-3  # s; the default experiment's step size
-
-EXPECTED_FMI2_EXPORTS = frozenset(
-    {
-        # 25 common functions
-        "fmi2GetTypesPlatform", "fmi2GetVersion", "fmi2SetDebugLogging", "fmi2Instantiate",
-        "fmi2FreeInstance", "fmi2SetupExperiment", "fmi2EnterInitializationMode",
-        "fmi2ExitInitializationMode", "fmi2Terminate", "fmi2Reset", "fmi2GetReal",
-        "fmi2GetInteger", "fmi2GetBoolean", "fmi2GetString", "fmi2SetReal", "fmi2SetInteger",
-        "fmi2SetBoolean", "fmi2SetString", "fmi2GetFMUstate", "fmi2SetFMUstate",
-        "fmi2FreeFMUstate", "fmi2SerializedFMUstateSize", "fmi2SerializeFMUstate",
-        "fmi2DeSerializeFMUstate", "fmi2GetDirectionalDerivative",
-        # 9 co-simulation functions
-        "fmi2SetRealInputDerivatives", "fmi2GetRealOutputDerivatives", "fmi2DoStep",
-        "fmi2CancelStep", "fmi2GetStatus", "fmi2GetRealStatus", "fmi2GetIntegerStatus",
-        "fmi2GetBooleanStatus", "fmi2GetStringStatus",
-    }
-)
-
-
 def shear_modulus(e: float, nu: float) -> float:
     return e / (2.0 * (1.0 + nu))
 
 
-def bits(values: np.ndarray) -> np.ndarray:
-    """The IEEE-754 bit patterns of float64 values, for bit-for-bit comparisons."""
-    return np.ascontiguousarray(values, dtype=np.float64).view(np.uint64)
-
-
-# ---------------------------------------------------------------------------------------------
-# Logging: one process-wide logger, messages routed per instance by componentEnvironment
-
-
-@dataclass(frozen=True)
-class LogMessage:
-    instance: str
-    status: int
-    category: str
-    text: str
-
-
-def _decode(b: bytes | None) -> str:
-    return b.decode("utf-8", errors="replace") if b is not None else ""
-
-
-class LogRouter:
-    """Collects the FMU's log messages per instance.
-
-    fmpy's proxy formats the printf-style message and calls a single static Python logger; each
-    instance gets its own `componentEnvironment` key so its messages land in its own list.
-    """
-
-    def __init__(self) -> None:
-        self._sinks: dict[int, list[LogMessage]] = {}
-        self._keys = itertools.count(1)
-        self._lock = threading.Lock()
-        self.unrouted: list[LogMessage] = []
-        self._callback = fmi2CallbackLoggerTYPE(self._on_message)  # kept alive for the process
-
-    def _on_message(self, env, instance, status, category, message) -> None:
-        msg = LogMessage(_decode(instance), int(status), _decode(category), _decode(message))
-        self._sinks.get(env or 0, self.unrouted).append(msg)
-
-    def new_callbacks(self) -> tuple[fmi2CallbackFunctions, list[LogMessage]]:
-        """A callbacks struct for one instance and the list its messages arrive in."""
-        with self._lock:
-            key = next(self._keys)
-            sink: list[LogMessage] = []
-            self._sinks[key] = sink
-        callbacks = fmi2CallbackFunctions()
-        callbacks.logger = self._callback
-        callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        callbacks.componentEnvironment = key
-        # (Re)installs this router as the proxy's target, whatever simulate_fmu installed before.
-        addLoggerProxy(byref(callbacks))
-        return callbacks, sink
-
-
-LOG = LogRouter()
-
-
-# ---------------------------------------------------------------------------------------------
-# One FMU2Slave instance with name-based access
-
-
-class Slave:
-    """An FMU2Slave of the extracted FMU with name-based get/set, time tracking and its log."""
-
-    _names = itertools.count()
-
-    def __init__(self, md: ModelDescription, unzipdir: Path, name: str | None = None) -> None:
-        self.md = md
-        self.vars = {v.name: v for v in md.modelVariables}
-        self.output_names = [v.name for v in md.modelVariables if v.causality == "output"]
-        self._output_vrs = [self.vars[n].valueReference for n in self.output_names]
-        self.name = name or f"hc{next(Slave._names)}"
-        self.callbacks, self.messages = LOG.new_callbacks()
-        self.fmu = FMU2Slave(
-            guid=md.guid,
-            unzipDirectory=str(unzipdir),
-            modelIdentifier=md.coSimulation.modelIdentifier,
-            instanceName=self.name,
-        )
-        try:
-            self.fmu.instantiate(callbacks=self.callbacks)
-        except Exception:
-            self.fmu.freeLibrary()
-            raise
-        self.time = 0.0
-        self._freed = False
-
-    # -- values
-    def set(self, **values: float | int) -> None:
-        """Sets variables one call each, so a rejected value is attributed to its variable."""
-        for name, value in values.items():
-            v = self.vars[name]
-            if v.type == "Integer":
-                self.fmu.setInteger([v.valueReference], [int(value)])
-            elif v.type == "Real":
-                self.fmu.setReal([v.valueReference], [float(value)])
-            else:  # pragma: no cover - the model has only Real and Integer variables
-                raise TypeError(f"{name}: {v.type}")
-
-    def get(self, name: str) -> float | int:
-        v = self.vars[name]
-        getter = self.fmu.getInteger if v.type == "Integer" else self.fmu.getReal
-        return getter([v.valueReference])[0]
-
-    def output_array(self) -> np.ndarray:
-        """All outputs, in model-description order; never NaN or ±∞ (docs/conventions.md)."""
-        values = np.array(self.fmu.getReal(self._output_vrs), dtype=np.float64)
-        bad = {n: x for n, x in zip(self.output_names, values) if not math.isfinite(x)}
-        assert not bad, f"{self.name}: non-finite outputs {bad}"
-        return values
-
-    def outputs(self) -> dict[str, float]:
-        return dict(zip(self.output_names, self.output_array().tolist()))
-
-    # -- life cycle
-    def initialize(
-        self,
-        params: Mapping[str, float | int] | None = None,
-        inputs: Mapping[str, float] | None = None,
-        stop_time: float | None = None,
-    ) -> "Slave":
-        self.fmu.setupExperiment(startTime=0.0, stopTime=stop_time)
-        self.set(**(params or {}))
-        self.set(**(inputs or {}))
-        self.fmu.enterInitializationMode()
-        self.fmu.exitInitializationMode()
-        self.time = 0.0
-        return self
-
-    def step(self, h: float = STEP) -> None:
-        self.fmu.doStep(currentCommunicationPoint=self.time, communicationStepSize=h)
-        self.time = self.time + h  # the FMU computes its time the same way
-
-    def run(self, sequence: Iterable[Mapping[str, float]], h: float = STEP) -> np.ndarray:
-        """For each entry: set those inputs, step, read all outputs. Returns one row per step."""
-        rows = []
-        for inputs in sequence:
-            self.set(**inputs)
-            self.step(h)
-            rows.append(self.output_array())
-        return np.array(rows)
-
-    def errors(self) -> list[LogMessage]:
-        return [m for m in self.messages if m.status >= fmi2Error]
-
-    def warnings(self) -> list[LogMessage]:
-        return [m for m in self.messages if m.status in (fmi2Warning, fmi2Discard)]
-
-    def free(self) -> None:
-        if self._freed:
-            return
-        self._freed = True
-        try:
-            self.fmu.terminate()
-        except FMICallException:
-            pass  # not initialized, or already terminated: freeing is still legal
-        self.fmu.freeInstance()
+# bits, LogMessage, LogRouter, LOG and Slave live in conftest.py: the Python logger behind fmpy's
+# native proxy is one per process, so every test module must share one LogRouter.
 
 
 @pytest.fixture
@@ -350,15 +161,8 @@ def test_model_description_matches_json_source(model_description: ModelDescripti
             assert v.start is None, v.name
 
 
-def _require_tool(name: str) -> str:
-    path = shutil.which(name)
-    if path is None:
-        pytest.fail(f"`{name}` is not installed (Debian: binutils / libc-bin); this check cannot run")
-    return path
-
-
 def test_shared_library_exports_exactly_34_fmi2_functions(shared_library: Path) -> None:
-    nm = _require_tool("nm")
+    nm = require_tool("nm")
     out = subprocess.run(
         [nm, "-D", "--defined-only", str(shared_library)], capture_output=True, text=True, check=True
     ).stdout
@@ -378,7 +182,7 @@ ALLOWED_DEPENDENCIES = re.compile(
 
 
 def test_shared_library_depends_only_on_glibc_and_libgcc(shared_library: Path) -> None:
-    ldd = _require_tool("ldd")
+    ldd = require_tool("ldd")
     out = subprocess.run([ldd, str(shared_library)], capture_output=True, text=True, check=True).stdout
     assert "not found" not in out, out
     deps = [line.split()[0] for line in out.splitlines() if line.strip()]
