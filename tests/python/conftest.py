@@ -314,3 +314,26 @@ class Slave:
         except FMICallException:
             pass  # not initialized, or already terminated: freeing is still legal
         self.fmu.freeInstance()
+
+
+def slave_factory(model_description: ModelDescription, unzipdir: Path):
+    """Generator behind the `new_slave`/`new_wrc` fixtures: yields a factory making initialized
+    `Slave`s of one FMU, and frees every slave it made at teardown (newest first)."""
+    created: list[Slave] = []
+
+    def factory(
+        params: Mapping[str, float | int | str] | None = None,
+        inputs: Mapping[str, float] | None = None,
+        initialize: bool = True,
+        name: str | None = None,
+        stop_time: float | None = None,
+    ) -> Slave:
+        slave = Slave(model_description, unzipdir, name)
+        created.append(slave)
+        if initialize:
+            slave.initialize(params, inputs, stop_time)
+        return slave
+
+    yield factory
+    for slave in reversed(created):
+        slave.free()

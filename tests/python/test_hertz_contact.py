@@ -38,7 +38,7 @@ from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2Error, fmi2LastSuccessfulTime
 from fmpy.model_description import ModelDescription
 from fmpy.validation import validate_fmu
 
-from conftest import EXPECTED_FMI2_EXPORTS, LOG, STEP, Slave, bits, require_tool
+from conftest import EXPECTED_FMI2_EXPORTS, LOG, STEP, Slave, bits, require_tool, slave_factory
 
 HERE = Path(__file__).resolve().parent
 REPO_ROOT = HERE.parents[1]
@@ -71,24 +71,7 @@ def shear_modulus(e: float, nu: float) -> float:
 @pytest.fixture
 def new_slave(model_description: ModelDescription, unzipdir: Path):
     """Factory: `new_slave(params=..., inputs=..., initialize=True, name=None)`; frees at teardown."""
-    created: list[Slave] = []
-
-    def factory(
-        params: Mapping[str, float | int] | None = None,
-        inputs: Mapping[str, float] | None = None,
-        initialize: bool = True,
-        name: str | None = None,
-        stop_time: float | None = None,
-    ) -> Slave:
-        slave = Slave(model_description, unzipdir, name)
-        created.append(slave)
-        if initialize:
-            slave.initialize(params, inputs, stop_time)
-        return slave
-
-    yield factory
-    for slave in reversed(created):
-        slave.free()
+    yield from slave_factory(model_description, unzipdir)
 
 
 def constant_input_signal(inputs: Mapping[str, float], stop_time: float) -> np.ndarray:

@@ -36,7 +36,7 @@ from fmpy.fmi2 import fmi2Discard, fmi2Error, fmi2LastSuccessfulTime, fmi2Termin
 from fmpy.model_description import ModelDescription
 from fmpy.validation import validate_fmu
 
-from conftest import EXPECTED_FMI2_EXPORTS, REPO_ROOT, Slave, bits, require_tool
+from conftest import EXPECTED_FMI2_EXPORTS, REPO_ROOT, Slave, bits, require_tool, slave_factory
 
 SHARED_ENV = "RAILCONTACT_SHARED"
 
@@ -59,24 +59,7 @@ PATCHES = (1, 2, 3)
 @pytest.fixture
 def new_wrc(wrc_model_description: ModelDescription, wrc_unzipdir: Path):
     """Factory: `new_wrc(params=..., inputs=..., initialize=True, name=None)`; frees at teardown."""
-    created: list[Slave] = []
-
-    def factory(
-        params: Mapping[str, float | int | str] | None = None,
-        inputs: Mapping[str, float] | None = None,
-        initialize: bool = True,
-        name: str | None = None,
-        stop_time: float | None = None,
-    ) -> Slave:
-        slave = Slave(wrc_model_description, wrc_unzipdir, name)
-        created.append(slave)
-        if initialize:
-            slave.initialize(params, inputs, stop_time)
-        return slave
-
-    yield factory
-    for slave in reversed(created):
-        slave.free()
+    yield from slave_factory(wrc_model_description, wrc_unzipdir)
 
 
 def shared_file(relative: str) -> Path:
