@@ -855,30 +855,15 @@ mod tests {
         let tol = 0.5e-8 * MM3_PER_N;
         let c = oracle_contact();
         let k = oracle_creepage();
-        let three = solve_with(
-            settings(40, TractionBound::Elliptic, Flexibility::Three),
-            &c,
-            &k,
-        );
-        for (l, printed) in three
-            .flexibilities
-            .iter()
-            .zip([0.5000e-4, 0.5233e-4, 0.4079e-4])
-        {
-            assert!((l - printed * MM3_PER_N).abs() <= tol, "{l}");
-        }
-        let blended = solve_with(
-            settings(40, TractionBound::Elliptic, Flexibility::Blended),
-            &c,
-            &k,
-        );
-        for (l, printed) in blended
-            .flexibilities
-            .iter()
-            .zip([0.4937e-4, 0.5152e-4, 0.4090e-4])
-        {
-            assert!((l - printed * MM3_PER_N).abs() <= tol, "{l}");
-        }
+        let solve_checked = |flexibility, printed: [f64; 3]| {
+            let r = solve_with(settings(40, TractionBound::Elliptic, flexibility), &c, &k);
+            for (l, p) in r.flexibilities.iter().zip(printed) {
+                assert!((l - p * MM3_PER_N).abs() <= tol, "{flexibility:?}: {l}");
+            }
+            r
+        };
+        let three = solve_checked(Flexibility::Three, [0.5000e-4, 0.5233e-4, 0.4079e-4]);
+        solve_checked(Flexibility::Blended, [0.4937e-4, 0.5152e-4, 0.4090e-4]);
         let w = blending_weight(&c, &three.coefficients, &k);
         assert!((w - 0.0799).abs() <= 0.5e-4, "{w}");
         // F1 directly against the coefficients: exact formula, to rounding.
