@@ -537,6 +537,23 @@ impl std::fmt::Display for StringArg {
 // ---------------------------------------------------------------------------------------------
 // FMU state: values only (serialized bytes), never pointers
 
+/// Stores `bytes` as the FMU state in `*slot`: a new `Box<Vec<u8>>` if the slot is NULL, else the
+/// existing state is overwritten in place (FMI 2.0: `fmi2GetFMUstate` may reuse a state).
+///
+/// # Safety
+/// `slot` is non-null and `*slot` is NULL or a state created by this library.
+unsafe fn store_state(slot: *mut fmi2FMUstate, bytes: Vec<u8>) {
+    // SAFETY: per the function's contract.
+    unsafe {
+        let slot = &mut *slot;
+        if slot.is_null() {
+            *slot = Box::into_raw(Box::new(bytes)).cast();
+        } else {
+            *(*slot).cast::<Vec<u8>>() = bytes;
+        }
+    }
+}
+
 /// # Safety
 /// FMI 2.0 host contract: `FMUstate` points to NULL or to a state of this library.
 #[unsafe(no_mangle)]
@@ -548,16 +565,8 @@ pub unsafe extern "C" fn fmi2GetFMUstate(
         if FMUstate.is_null() {
             return inst.error("fmi2GetFMUstate: FMUstate is NULL");
         }
-        let bytes = inst.save_state();
-        // SAFETY: checked non-null; *FMUstate is NULL or a Box<Vec<u8>> we allocated.
-        unsafe {
-            let slot = &mut *FMUstate;
-            if slot.is_null() {
-                *slot = Box::into_raw(Box::new(bytes)).cast();
-            } else {
-                *(*slot).cast::<Vec<u8>>() = bytes;
-            }
-        }
+        // SAFETY: checked non-null; *FMUstate is NULL or a state of ours.
+        unsafe { store_state(FMUstate, inst.save_state()) };
         OK
     })
 }
@@ -670,15 +679,8 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         if let Err(m) = inst.validate_state(&bytes) {
             return inst.error(&format!("fmi2DeSerializeFMUstate: {m}"));
         }
-        // SAFETY: checked non-null; *FMUstate is NULL or a Box<Vec<u8>> of ours.
-        unsafe {
-            let slot = &mut *FMUstate;
-            if slot.is_null() {
-                *slot = Box::into_raw(Box::new(bytes)).cast();
-            } else {
-                *(*slot).cast::<Vec<u8>>() = bytes;
-            }
-        }
+        // SAFETY: checked non-null; *FMUstate is NULL or a state of ours.
+        unsafe { store_state(FMUstate, bytes) };
         OK
     })
 }

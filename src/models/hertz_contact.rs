@@ -2,7 +2,8 @@
 //! compute their own contact geometry. Variables: `modelDescription/HertzContact.json`; physics:
 //! [`crate::point_contact`].
 
-use crate::fastsim::{Creepage, FastsimSettings, Flexibility, TractionBound};
+use super::{fastsim_settings, set_output};
+use crate::fastsim::Creepage;
 use crate::fmi::model::{InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::Values;
 use crate::point_contact::{Material, PointContact, PointContactInput};
@@ -32,41 +33,6 @@ struct HertzContact {
     solver: Option<PointContact>,
 }
 
-/// FASTSIM settings from the integer parameters (ranges already checked against the table).
-fn fastsim_settings(values: &Values) -> Result<FastsimSettings, ModelError> {
-    let bound = match values.integer(var::tractionBound) {
-        1 => TractionBound::Elliptic,
-        2 => TractionBound::Parabolic,
-        k => {
-            return Err(ModelError::Error(format!(
-                "tractionBound = {k} is not 1 or 2"
-            )))
-        }
-    };
-    let flexibility = match values.integer(var::flexibility) {
-        1 => Flexibility::Three,
-        2 => Flexibility::Single,
-        3 => Flexibility::Blended,
-        k => {
-            return Err(ModelError::Error(format!(
-                "flexibility = {k} is not 1, 2 or 3"
-            )))
-        }
-    };
-    let count = |name: &str, k: i32| {
-        usize::try_from(k)
-            .ok()
-            .filter(|&n| n >= 1)
-            .ok_or_else(|| ModelError::Error(format!("{name} = {k} must be >= 1")))
-    };
-    Ok(FastsimSettings {
-        nx: count("nx", values.integer(var::nx))?,
-        ny: count("ny", values.integer(var::ny))?,
-        bound,
-        flexibility,
-    })
-}
-
 impl Model for HertzContact {
     fn initialize(&mut self, values: &Values) -> Result<(), ModelError> {
         let material = Material {
@@ -74,7 +40,15 @@ impl Model for HertzContact {
             poisson_ratio: values.real(var::nu),
             friction: values.real(var::mu),
         };
-        self.solver = Some(PointContact::new(material, fastsim_settings(values)?)?);
+        self.solver = Some(PointContact::new(
+            material,
+            fastsim_settings(
+                values.integer(var::tractionBound),
+                values.integer(var::flexibility),
+                values.integer(var::nx),
+                values.integer(var::ny),
+            )?,
+        )?);
         Ok(())
     }
 
@@ -112,13 +86,7 @@ impl Model for HertzContact {
             (var::C22, r.coefficients.c22),
             (var::C23, r.coefficients.c23),
         ] {
-            if !x.is_finite() {
-                return Err(ModelError::Error(format!(
-                    "internal error: non-finite output ({x}) for N = {}, A = {}, B = {}",
-                    input.normal_force, input.curv_a, input.curv_b
-                )));
-            }
-            values.set_real(v, x);
+            set_output(values, v, x)?;
         }
         Ok(())
     }

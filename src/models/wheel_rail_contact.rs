@@ -2,7 +2,8 @@
 //! to creep forces and contact-patch summaries. Variables: `modelDescription/WheelRailContact.json`;
 //! physics: [`crate::wheelset`].
 
-use crate::fastsim::{Creepage, FastsimSettings, Flexibility, TractionBound};
+use super::{fastsim_settings, set_output};
+use crate::fastsim::Creepage;
 use crate::fmi::model::{InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::{IntegerVar, RealVar, Values};
 use crate::point_contact::Material;
@@ -209,16 +210,6 @@ fn load_profile(
 
 /// The wheelset settings the parameters describe.
 pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
-    let bound = match values.integer(var::tractionBound) {
-        2 => TractionBound::Parabolic,
-        _ => TractionBound::Elliptic,
-    };
-    let flexibility = match values.integer(var::flexibility) {
-        2 => Flexibility::Single,
-        3 => Flexibility::Blended,
-        _ => Flexibility::Three,
-    };
-    let count = |v: IntegerVar| usize::try_from(values.integer(v)).unwrap_or(1).max(1);
     Ok(WheelsetSettings {
         setup: TrackSetup {
             rail_inclination: values.real(var::railInclination),
@@ -232,12 +223,12 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
             poisson_ratio: values.real(var::nu),
             friction: values.real(var::mu),
         },
-        fastsim: FastsimSettings {
-            nx: count(var::nx),
-            ny: count(var::ny),
-            bound,
-            flexibility,
-        },
+        fastsim: fastsim_settings(
+            values.integer(var::tractionBound),
+            values.integer(var::flexibility),
+            values.integer(var::nx),
+            values.integer(var::ny),
+        )?,
         scan_step: values.real(var::scanStep),
         b_min: values.real(var::bMin),
     })
@@ -290,7 +281,7 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
     values.set_integer(n, side.n_patches as i32);
     let total_values = [side.force[0], side.force[1], side.force[2], side.z];
     for (v, x) in totals.into_iter().zip(total_values) {
-        set_finite(values, v, x)?;
+        set_output(values, v, x)?;
     }
     for k in 0..MAX_PATCHES {
         let p = &side.patches[k];
@@ -314,20 +305,9 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
             p.frictional_power,
         ];
         for (v, x) in patch_vars(right, k).into_iter().zip(xs) {
-            set_finite(values, v, x)?;
+            set_output(values, v, x)?;
         }
     }
-    Ok(())
-}
-
-fn set_finite(values: &mut Values, v: RealVar, x: f64) -> Result<(), ModelError> {
-    if !x.is_finite() {
-        return Err(ModelError::Error(format!(
-            "internal error: non-finite output ({x}) in slot {}",
-            v.0
-        )));
-    }
-    values.set_real(v, x);
     Ok(())
 }
 
