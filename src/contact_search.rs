@@ -80,9 +80,6 @@ pub struct ContactPoint {
     pub curv_a: f64,
     /// Relative lateral curvature B [1/m] (floored).
     pub curv_b: f64,
-    /// Highest sampled gap between this point and the next one towards the gauge side [m]
-    /// (+∞ for the last point): two points whose interpenetration regions join are one patch.
-    pub ridge_to_next: f64,
 }
 
 /// Contact candidates of one wheel, ordered from the field side to the gauge side.
@@ -392,7 +389,7 @@ impl WheelOnRail {
         }
     }
 
-    fn describe(&self, w: f64, s: &GapSample, ridge_to_next: f64) -> ContactPoint {
+    fn describe(&self, w: f64, s: &GapSample) -> ContactPoint {
         let (_, dz_r, d2z_r) = self.rail.profile().eval(s.y_rail);
         let (z_w, dz_w, d2z_w) = self.wheel.eval(s.y_wheel);
         let contact_angle = -dz_r.atan();
@@ -409,7 +406,6 @@ impl WheelOnRail {
             rolling_radius,
             curv_a: 0.5 * contact_angle.cos() / rolling_radius,
             curv_b,
-            ridge_to_next,
         }
     }
 
@@ -484,7 +480,7 @@ impl WheelOnRail {
             y_wheel: lerp(s[i].y_wheel, s[i + 1].y_wheel),
         };
         let w = self.scan_lo + self.scan_dw * at;
-        self.describe(w, &sample, f64::INFINITY)
+        self.describe(w, &sample)
     }
 
     /// Finds the contact candidates at `pose`, ordered from the field side to the gauge side.
@@ -535,10 +531,10 @@ impl WheelOnRail {
         }
 
         // Interior local minima, scanned from the gauge side (small w) to the field side.
-        // found[k] = (sample index, highest gap between minimum k and minimum k + 1). Minima
-        // separated by a ridge less than MIN_PROMINENCE above the shallower one are merged, and
-        // so is any minimum beyond MAX_CANDIDATES into the last kept one (keeping the deeper).
-        let mut found: [(usize, f64); MAX_CANDIDATES] = [(0, f64::INFINITY); MAX_CANDIDATES];
+        // Minima separated by a ridge less than MIN_PROMINENCE above the shallower one are
+        // merged, and so is any minimum beyond MAX_CANDIDATES into the last kept one (keeping the
+        // deeper).
+        let mut found = [0usize; MAX_CANDIDATES];
         let mut count = 0usize;
         let mut ridge = f64::NEG_INFINITY;
         for i in 1..n {
@@ -548,30 +544,26 @@ impl WheelOnRail {
                 continue;
             }
             if count > 0 {
-                let prev = found[count - 1].0;
+                let prev = found[count - 1];
                 let separate = ridge - samples[prev].gap.max(g) >= MIN_PROMINENCE;
                 if !separate || count == MAX_CANDIDATES {
                     if g < samples[prev].gap {
-                        found[count - 1].0 = i;
+                        found[count - 1] = i;
                     }
                     ridge = g;
                     continue;
                 }
-                found[count - 1].1 = ridge;
             }
-            found[count] = (i, f64::INFINITY);
+            found[count] = i;
             count += 1;
             ridge = g;
         }
-        // Refine and describe, field side first (largest w first); `ridge_to_next` looks towards
-        // the gauge side, i.e. at the ridge recorded for the previous minimum.
-        for k in (0..count).rev() {
-            let i = found[k].0;
+        // Refine and describe, field side first (largest w first).
+        for &i in found[..count].iter().rev() {
             let a = lo + step * (i - 1) as f64;
             let b = lo + step * (i + 1) as f64;
             let (w, s) = self.refine(a, b, &p);
-            let ridge_to_gauge = if k > 0 { found[k - 1].1 } else { f64::INFINITY };
-            out.push(self.describe(w, &s, ridge_to_gauge));
+            out.push(self.describe(w, &s));
         }
         self.samples = samples;
         Ok(())

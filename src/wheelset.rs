@@ -353,7 +353,6 @@ fn evaluate_side(
     ctx: &Context,
     input: &WheelsetInput,
     dz: f64,
-    with_tangential: bool,
     out: &mut SideResult,
 ) -> Result<f64, InputError> {
     *out = SideResult {
@@ -390,29 +389,28 @@ fn evaluate_side(
             curv_b: deepest.curv_b,
             ..PatchResult::default()
         };
-        if with_tangential {
-            let contact = EllipticContact {
-                a: patch.a,
-                b: patch.b,
-                normal_force: patch.normal_force,
-                shear_modulus: ctx.shear_modulus,
-                nu: ctx.material.poisson_ratio,
-                mu: ctx.material.friction,
-            };
-            let t = side.fastsim[out.n_patches].solve(&contact, &creepage, speed)?;
-            result.fx = t.fx;
-            result.fy = t.fy;
-            result.mz = t.mz;
-            result.adhesion_fraction = t.adhesion_fraction;
-            result.frictional_power = t.frictional_power;
-            result.max_traction = t.max_traction;
-        }
+        let contact = EllipticContact {
+            a: patch.a,
+            b: patch.b,
+            normal_force: patch.normal_force,
+            shear_modulus: ctx.shear_modulus,
+            nu: ctx.material.poisson_ratio,
+            mu: ctx.material.friction,
+        };
+        let t = side.fastsim[out.n_patches].solve(&contact, &creepage, speed)?;
+        result.fx = t.fx;
+        result.fy = t.fy;
+        result.mz = t.mz;
+        result.adhesion_fraction = t.adhesion_fraction;
+        result.frictional_power = t.frictional_power;
+        result.max_traction = t.max_traction;
         let (sin_g, cos_g) = gamma.sin_cos();
         let s = side.sigma;
+        let e_x = [1.0, 0.0, 0.0];
         let e_y = [0.0, cos_g, -s * sin_g];
         let e_z = [0.0, s * sin_g, cos_g];
         for i in 0..3 {
-            force[i] += result.fx * [1.0, 0.0, 0.0][i] + result.fy * e_y[i] - result.fn_ * e_z[i];
+            force[i] += result.fx * e_x[i] + result.fy * e_y[i] - result.fn_ * e_z[i];
         }
         upward += result.fn_ * cos_g + s * result.fy * sin_g;
         out.patches[out.n_patches] = result;
@@ -449,7 +447,7 @@ fn solve_side(
         .map(|c| c.gap)
         .fold(f64::INFINITY, f64::min);
     let Some(q) = load else {
-        evaluate_side(side, ctx, input, z, true, out)?;
+        evaluate_side(side, ctx, input, z, out)?;
         return Ok(());
     };
     if q == 0.0 {
@@ -478,7 +476,7 @@ fn solve_side(
     let mut f_hi;
     loop {
         hi = touch + hi_pen;
-        f_hi = evaluate_side(side, ctx, input, hi, true, out)? - q;
+        f_hi = evaluate_side(side, ctx, input, hi, out)? - q;
         if f_hi > 0.0 || hi_pen > 0.05 {
             break;
         }
@@ -494,7 +492,7 @@ fn solve_side(
         if !mid.is_finite() || mid <= lo.min(hi) || mid >= lo.max(hi) {
             mid = 0.5 * (lo + hi);
         }
-        let f_mid = evaluate_side(side, ctx, input, mid, true, out)? - q;
+        let f_mid = evaluate_side(side, ctx, input, mid, out)? - q;
         if f_mid.abs() <= LOAD_TOLERANCE * q {
             return Ok(());
         }
@@ -518,7 +516,7 @@ fn solve_side(
     // one); the bracket then closes on the jump. Take the bracket end nearer to the load.
     let best = if f_lo.abs() < f_hi.abs() { lo } else { hi };
     if best != mid {
-        evaluate_side(side, ctx, input, best, true, out)?;
+        evaluate_side(side, ctx, input, best, out)?;
     }
     Ok(())
 }
