@@ -18,6 +18,11 @@ pub mod hertz;
 pub mod kalker;
 pub mod point_contact;
 pub mod profile;
+pub mod strips;
+pub mod linder;
+pub mod kik_piotrowski;
+pub mod stripes;
+pub mod analyn;
 pub mod track;
 pub mod wheelset;
 
