@@ -26,6 +26,7 @@
 //! B ignores the small change of lateral curvature by yaw; straight track.
 
 use crate::profile::Profile;
+use crate::strips::{StripGeometry, MAX_STRIPS};
 use crate::track::{GeometryError, MountedRail, TrackSetup};
 
 /// Largest number of separate contact candidates kept per wheel.
@@ -199,7 +200,7 @@ struct GapSample {
 }
 
 /// Trigonometry and offsets of a pose, computed once per search.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Prepared {
     lateral: f64,
     sin_yaw: f64,
@@ -222,6 +223,117 @@ pub struct WheelOnRail {
     /// Lateral coordinate of the first sample and the sample spacing of the last search [m].
     scan_lo: f64,
     scan_dw: f64,
+    /// The pose of the last search.
+    pose: Prepared,
+}
+
+/// The contact plane of a patch, in the wheelset frame of one side (lateral w towards the field
+/// side, vertical z downwards from the axle): its origin is the rail point under the patch's
+/// first-contact point (the local minimum of the gap). Tangent t = (cos γ, −sin γ) (towards the
+/// field side), normal n = (sin γ, cos γ) (from the wheel into the rail).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactPlane {
+    /// Lateral coordinate of the origin (wheelset frame) [m].
+    pub w0: f64,
+    /// Vertical coordinate of the origin below the axle [m].
+    pub z0: f64,
+    /// Inclination γ of the plane in the wheelset frame [rad], positive rising towards the flange.
+    pub gamma: f64,
+    /// Normal gap at the origin with the wheel at its nominal height [m]: lowering the wheel by
+    /// dz gives the normal approach δ = dz cos γ − gap_n.
+    pub gap_n: f64,
+}
+
+impl ContactPlane {
+    /// Normal approach of the patch's first-contact point when the wheel is lowered by `dz` [m].
+    pub fn approach(&self, dz: f64) -> f64 {
+        dz * self.gamma.cos() - self.gap_n
+    }
+}
+
+/// Points of the strips of a patch, for outputs and the tangential problem.
+#[derive(Debug, Clone)]
+pub struct StripPoints {
+    /// Lateral coordinate of the rail point in the mounted rail frame [m].
+    pub y_rail: [f64; MAX_STRIPS],
+    /// Local contact angle of the rail (positive towards the flange) [rad].
+    pub contact_angle: [f64; MAX_STRIPS],
+    /// Rolling radius of the wheel point [m].
+    pub rolling_radius: [f64; MAX_STRIPS],
+    /// Lateral coordinate of the rail point (wheelset frame) [m].
+    pub lateral: [f64; MAX_STRIPS],
+}
+
+impl Default for StripPoints {
+    fn default() -> Self {
+        Self {
+            y_rail: [0.0; MAX_STRIPS],
+            contact_angle: [0.0; MAX_STRIPS],
+            rolling_radius: [0.0; MAX_STRIPS],
+            lateral: [0.0; MAX_STRIPS],
+        }
+    }
+}
+
+/// One point of a profile curve found by [`project_on_plane`].
+#[derive(Debug, Clone, Copy)]
+struct CurvePoint<T> {
+    w: f64,
+    z: f64,
+    extra: T,
+}
+
+/// Solves t(w) = (w − w0) cos γ − (z(w) − z0) sin γ = s for a curve w ↦ (z, extra) by a secant
+/// iteration started on the tangent (dt/dw = 1/cos γ at the tangent point and varies slowly
+/// near a patch).
+fn project_on_plane<T: Copy>(
+    plane: &ContactPlane,
+    s: f64,
+    curve: impl Fn(f64) -> (f64, T),
+) -> CurvePoint<T> {
+    let (sin_g, cos_g) = plane.gamma.sin_cos();
+    let eval = |w: f64| {
+        let (z, extra) = curve(w);
+        let residual = (w - plane.w0) * cos_g - (z - plane.z0) * sin_g - s;
+        (residual, CurvePoint { w, z, extra })
+    };
+    let w_start = plane.w0 + s * cos_g;
+    let (mut r_prev, mut prev) = eval(w_start);
+    let mut w = w_start - r_prev * cos_g;
+    let mut point = prev;
+    for _ in 0..8 {
+        let (r, p) = eval(w);
+        point = p;
+        // 1e−12 m along the plane: far below every contact dimension.
+        if r.abs() < 1e-12 || r == r_prev {
+            break;
+        }
+        let next = w - r * (w - prev.w) / (r - r_prev);
+        (r_prev, prev) = (r, p);
+        w = next;
+    }
+    point
+}
+
+/// Normal coordinate (n = (sin γ, cos γ)) of the wheelset-frame point (w, z) from the plane's
+/// origin [m].
+fn normal_coordinate(plane: &ContactPlane, w: f64, z: f64) -> f64 {
+    let (sin_g, cos_g) = plane.gamma.sin_cos();
+    (w - plane.w0) * sin_g + (z - plane.z0) * cos_g
+}
+
+/// Gap and points at one in-plane coordinate (see [`WheelOnRail::strip_geometry`]).
+#[derive(Debug, Clone, Copy)]
+struct PlaneGap {
+    /// Normal gap minus the origin's gap [m].
+    f: f64,
+    /// Longitudinal position of the wheel's lowest point [m].
+    x: f64,
+    /// Rail point: lateral (wheelset frame) and rail-frame coordinate [m].
+    w_rail: f64,
+    y_rail: f64,
+    /// Wheel profile coordinate [m].
+    y_wheel: f64,
 }
 
 impl WheelOnRail {
@@ -256,6 +368,7 @@ impl WheelOnRail {
             samples: Vec::with_capacity(capacity),
             scan_lo: 0.0,
             scan_dw: scan_step,
+            pose: Prepared::default(),
         })
     }
 
@@ -483,6 +596,104 @@ impl WheelOnRail {
         self.describe(w, &sample)
     }
 
+    /// Lateral coordinate (wheelset frame) of fractional sample index `at` of the last search [m].
+    pub fn lateral_at(&self, at: f64) -> f64 {
+        self.scan_lo + self.scan_dw * at
+    }
+
+    /// The contact plane at lateral `w0` (wheelset frame) for the pose of the last search:
+    /// origin on the rail, inclination from the rail's slope there (at a gap minimum the rail and
+    /// wheel slopes agree).
+    pub fn contact_plane(&self, w0: f64) -> ContactPlane {
+        let p = &self.pose;
+        // Central difference over ±1 µm: truncation error ~1e−12 z''', far below the profiles'
+        // own accuracy.
+        const H: f64 = 1e-6;
+        let (z0, _) = self.rail_at(w0, p);
+        let slope = (self.rail_at(w0 + H, p).0 - self.rail_at(w0 - H, p).0) / (2.0 * H);
+        let mut plane = ContactPlane {
+            w0,
+            z0,
+            gamma: -slope.atan(),
+            gap_n: 0.0,
+        };
+        let wheel = project_on_plane(&plane, 0.0, |w| (self.wheel_at(w, p).0, ()));
+        plane.gap_n = -normal_coordinate(&plane, wheel.w, wheel.z);
+        plane
+    }
+
+    /// In-plane coordinate s of the rail point at fractional sample index `at` [m].
+    pub fn plane_coordinate_at(&self, plane: &ContactPlane, at: f64) -> f64 {
+        self.plane_coordinate_of(plane, self.lateral_at(at))
+    }
+
+    /// In-plane coordinate s of the rail point at wheelset-frame lateral `w` [m].
+    pub fn plane_coordinate_of(&self, plane: &ContactPlane, w: f64) -> f64 {
+        let (z, _) = self.rail_at(w, &self.pose);
+        let (sin_g, cos_g) = plane.gamma.sin_cos();
+        (w - plane.w0) * cos_g - (z - plane.z0) * sin_g
+    }
+
+    /// Rail and wheel points at in-plane coordinate `s` and their normal gap.
+    fn gap_in_plane(&self, plane: &ContactPlane, s: f64) -> PlaneGap {
+        let p = &self.pose;
+        let rail = project_on_plane(plane, s, |w| self.rail_at(w, p));
+        let wheel = project_on_plane(plane, s, |w| {
+            let (z, x, y_wheel) = self.wheel_at(w, p);
+            (z, (x, y_wheel))
+        });
+        PlaneGap {
+            f: normal_coordinate(plane, rail.w, rail.z)
+                - normal_coordinate(plane, wheel.w, wheel.z)
+                - plane.gap_n,
+            x: wheel.extra.0,
+            w_rail: rail.w,
+            y_rail: rail.extra,
+            y_wheel: wheel.extra.1,
+        }
+    }
+
+    /// Fills `geom` and `points` with `n` strips of equal width covering [s_lo, s_hi] of the
+    /// contact plane: the normal gap f from the origin's gap, A = cos γ_i/(2 r_i) at each strip's
+    /// own contact angle and rolling radius (Meusnier, straight rail), B = ½ f'' by central
+    /// differences over the strip spacing (one extra gap value beyond each end), and the yaw
+    /// locus x_c. Known limits: A ignores the small tilt cos(γ_i − γ) between the strip and the
+    /// plane, and the change of the wheel's lateral curvature by yaw.
+    pub fn strip_geometry(
+        &self,
+        plane: &ContactPlane,
+        s_lo: f64,
+        s_hi: f64,
+        n: usize,
+        geom: &mut StripGeometry,
+        points: &mut StripPoints,
+    ) {
+        let n = n.clamp(1, MAX_STRIPS);
+        let ds = (s_hi - s_lo) / n as f64;
+        geom.n = n;
+        geom.ds = ds;
+        let mut f_prev = self.gap_in_plane(plane, s_lo - 0.5 * ds).f;
+        let mut current = self.gap_in_plane(plane, s_lo + 0.5 * ds);
+        for i in 0..n {
+            let s = s_lo + (i as f64 + 0.5) * ds;
+            let next = self.gap_in_plane(plane, s + ds);
+            let (_, dz_r, _) = self.rail.profile().eval(current.y_rail);
+            let gamma = -dz_r.atan();
+            let radius = self.setup.wheel_radius + self.wheel.z(current.y_wheel);
+            geom.s[i] = s;
+            geom.f[i] = current.f;
+            geom.curv_a[i] = 0.5 * gamma.cos() / radius;
+            geom.curv_b[i] = (next.f - 2.0 * current.f + f_prev) / (2.0 * ds * ds);
+            geom.x_c[i] = current.x;
+            points.y_rail[i] = current.y_rail;
+            points.contact_angle[i] = gamma;
+            points.rolling_radius[i] = radius;
+            points.lateral[i] = current.w_rail;
+            f_prev = current.f;
+            current = next;
+        }
+    }
+
     /// Finds the contact candidates at `pose`, ordered from the field side to the gauge side.
     pub fn search(
         &mut self,
@@ -497,6 +708,7 @@ impl WheelOnRail {
             sin_roll: pose.roll.sin(),
             cos_roll: pose.roll.cos(),
         };
+        self.pose = p;
         // `+ 0.0` turns −0 (a mirrored zero shift) into 0 for messages.
         let lateral = pose.lateral + 0.0;
         let (lo, hi) = self.overlap(&p).ok_or(SearchError::NoOverlap { lateral })?;

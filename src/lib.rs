@@ -24,6 +24,7 @@ pub mod kik_piotrowski;
 pub mod stripes;
 pub mod analyn;
 pub mod track;
+pub mod wheel_strips;
 pub mod wheelset;
 
 pub mod fmi;

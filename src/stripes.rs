@@ -1,1 +1,591 @@
-//! (in progress)
+//! STRIPES semi-Hertzian normal contact: Approach 3 ([`StripesB`], B corrected and smoothed) and a
+//! reconstruction of Approach 4 ([`StripesAB`], A and B corrected, no smoothing).
+//!
+//! Papers: M. Sh. Sichani, R. Enblom, M. Berg, "Comparison of non-elliptic contact models: towards
+//! fast and accurate modelling of wheel–rail contact", Wear 314 (2014) 111–117 (the seed, which
+//! names the approaches); J.-B. Ayasse, H. Chollet, "Determination of the wheel rail contact patch
+//! in semi-Hertzian conditions", Vehicle System Dynamics 43 (2005) (STRIPES). Neither
+//! paper's equations were at hand: what follows is the **reconstruction of physics.md §5.6 (S0–S6)
+//! and §5.7**, with the labels used there.
+//!
+//! # Approach 3, [`StripesB`] (physics.md §5.6, [R])
+//!
+//! On the strips of [`StripGeometry`] (centres s_i, width Δs, first-contact point s = 0):
+//!
+//! * **S0** B_i is smoothed by a centred least-squares parabola (below), then floored:
+//!   B_i ≤ B_min → B_min (Ayasse–Chollet's replacement rule, physics.md §5.10).
+//! * **S1** ε_i = ε_x(A_i/B_i), the local Hertz split A a² = ε_x δ (H6), from [`HertzShapeTable`].
+//! * **S2** B*_i = B_i ε_i/(1 − ε_i).
+//! * **S3** f*(s) = ∫₀ˢ (s − t) 2B*(t) dt, i.e. f*'' = 2B*, f*(0) = f*'(0) = 0.
+//! * **S4** x_l,i = √((ε_i δ − f*_i)/A_i) where positive, else the strip is out of contact.
+//! * **S5** p0_i = Hertz peak of the local ellipse with the strip's ORIGINAL (smoothed, floored)
+//!   curvatures A_i, B_i and x-semi-axis a = x_l,i (derivation below).
+//! * **S6** N = Σ (π/2) p0_i x_l,i Δs (V1). The δ iteration for a prescribed load (V2) is the
+//!   caller's.
+//!
+//! Exactness on a Hertz gap f = B s², A constant: B* = Bε/(1 − ε) is constant, f* = B* s², and
+//! x_l² = (εδ/A)(1 − s²/b²) with b² = εδ/B* = (1 − ε)δ/B = ε_y δ/B, which is the Hertz half-width
+//! (H6); with S5 the strip pressure is p0_H √(1 − s²/b² − x²/a²), the Hertz pressure.
+//!
+//! # Approach 4, [`StripesAB`] (physics.md §5.7, [U]: reconstructed, experimental)
+//!
+//! The brief's template with its suggested cube-root split ε̃(A/B) = 1/(1 + (A/B)^{1/3})
+//! ([`approximate_shape_factor`]):
+//!
+//! * B_i ← B_i + max(0, B_min − min_j B_j), the minimum taken over all strips of the geometry
+//!   (the δ-independent patch; a constant shift, unlike Approach 3's replacement);
+//! * ε_i = ε_x(A_i/B_i) (exact, from the table) and ε̃_i = ε̃(A_i/B_i);
+//! * A*_i = A_i ε̃_i/ε_i,  B*_i = B_i ε̃_i/(1 − ε̃_i);  f* from 2B* as in S3;
+//! * x_l,i = √((ε̃_i δ − f*_i)/A*_i); p0_i as S5 with the (shifted) curvatures A_i, B_i.
+//!
+//! The virtual-penetration factor of the template ("A* = A ε/ε_x") is taken as ε = ε̃: any
+//! strip-wise ε cancels from x_l = √(ε_x (δ − f*/ε)/A), so this choice only fixes the names. On a
+//! Hertz gap x_l² = a_H²(1 − s²/b̃²), b̃² = (1 − ε̃)δ/B: the length 2a_H is exact, the width is
+//! b̃/b_H = √((1 − ε̃)/(1 − ε_x)): exact at A/B = 1, −2.08 % at A/B = 0.1, +1.01 % at A/B = 10
+//! (tested), −8.6 % at A/B = 0.02. The strip peaks are p0_H √(1 − s²/b̃²), so p0 = p0_H and
+//! N/N_H = b̃/b_H.
+//!
+//! # Choices where the brief leaves the reading open
+//!
+//! * **S0 filter [U]:** a least-squares parabola in s, centred on each strip, over the strips
+//!   |j − i| ≤ m, m = ⌊w n / 2⌋ with w = `params.b_smoothing` (the window spans the fraction w of
+//!   the strip set's width nΔs; w = 0 or m = 0: no smoothing). Near the ends the window is
+//!   truncated and the fit is one-sided. The parabola (not a moving average) because it
+//!   reproduces any B that is quadratic in s over the window, also at the truncated ends, so a
+//!   Hertz gap stays exact with smoothing on and a linear trend of B is not biased at the patch
+//!   ends. Smoothing acts on the raw B (non-finite values first replaced by B_min), the floor after
+//!   it, as S0 orders it. The window is a fraction of the strip set, not of the δ-dependent contact
+//!   width: `prepare` is δ-independent.
+//! * **S3 [U]: double integration, not f·B*/B.** Both are exact on a Hertz gap. Integration is
+//!   chosen because the seed says that smoothing B smooths the patch boundary, which holds only if
+//!   the boundary is built from the (smoothed) B; with f·B*/B the smoothing would only enter
+//!   through ε. Discretisation: 2B* is taken piecewise constant on the strips (B*_i on
+//!   [s_i − Δs/2, s_i + Δs/2], extended by the end strip's value beyond the set) and integrated
+//!   exactly from s = 0 outwards, so the first-contact point may lie anywhere in a strip (or
+//!   outside the set): f*_i = ∫₀^{s_i} (s_i − t) 2B*(t) dt exactly for that piecewise-constant B*.
+//!   Constant B* gives f* = B* s² to round-off (the exactness above); for smooth B* the error of
+//!   f*_i is O(Δs²). Consequence: the corrected gap is convex, so a second minimum of f inside the
+//!   strip set is not found: a gap with disjoint contact regions must be cut into separate patches
+//!   (physics.md §5.1) before STRIPES sees it.
+//! * **S5 [R]: local peak from the strip length.** The strip carries the Hertz ellipse of
+//!   (A_i, B_i) whose x-semi-axis is a = x_l,i. That ellipse has the approach δ_e = A_i a²/ε_i
+//!   (H6) and the peak p0 = E* √(δ_e (A_i + B_i)) P(A_i/B_i) (the table's coefficient), so
+//!   p0_i = E* P_i x_l,i √(A_i (A_i + B_i)/ε_i) — the A-based form of physics.md §2.4
+//!   (circle: 4E*A a/π). Using B* here would break exactness (brief).
+//! * **A4 pressure [U]:** the same S5 rule with the shifted curvatures (exact peak on a Hertz gap).
+//! * **B_min:** `params.b_min` (default 0.1 1/m, CONTACT's 1e−4 1/mm); a non-positive or
+//!   non-finite value falls back to the default.
+//!
+//! # Known limits
+//!
+//! * The corrected gap f* uses only B (S3): where the real surfaces diverge (B < 0 floored to
+//!   B_min) the Approach-3 patch extends far along s, up to the end of the strip set; Approach 4's
+//!   constant shift lets one strongly concave strip anywhere in the set lift every B.
+//! * Approach 4's ε̃ is the brief's candidate, not the paper's formula: its width error grows for
+//!   A/B → 0 (b̃/b_H = 0.914 at A/B = 0.02) — replace when Ayasse & Chollet 2005 is at hand.
+//! * Strips with A_i ≤ 0 or non-finite A_i are out of contact (A > 0 is a precondition of the
+//!   geometry); in the S3 integration they carry B*_i = B_i.
+//! * Per-strip contact angles (the non-planar patch, §5.9) are the caller's.
+//!
+//! `prepare` and `solve` use fixed arrays of [`MAX_STRIPS`] inside the structs: no allocation, no
+//! panic, and no NaN for any finite geometry and any δ (δ ≤ 0 or NaN: no contact).
+
+use crate::strips::{
+    HertzShape, HertzShapeTable, NormalParams, StripGeometry, StripModel, StripSolution,
+    MAX_STRIPS,
+};
+
+/// Approximate Hertz split ε̃(A/B) = 1/(1 + (A/B)^{1/3}) of the Approach-4 reconstruction
+/// (physics.md §5.7, from a/b ≈ (B/A)^{2/3}); exact (½) at A = B. Curvatures A, B > 0 [1/m].
+pub fn approximate_shape_factor(curv_a: f64, curv_b: f64) -> f64 {
+    1.0 / (1.0 + (curv_a / curv_b).cbrt())
+}
+
+/// Local Hertz peak per unit half-length and unit E* (S5): the Hertz ellipse of curvatures
+/// A, B > 0 with x-semi-axis a has p0 = E* · a · P √(A (A + B)/ε_x) [1/m].
+fn hertz_peak_per_half_length(curv_a: f64, curv_b: f64, shape: &HertzShape) -> f64 {
+    shape.p0_coeff * (curv_a * (curv_a + curv_b) / shape.eps_x).sqrt()
+}
+
+/// Hertz shape of curvatures A, B > 0 from the table (no error path: callers check positivity).
+fn local_shape(table: &HertzShapeTable, curv_a: f64, curv_b: f64) -> HertzShape {
+    table.at_log_ratio((curv_a / curv_b).ln())
+}
+
+/// A usable longitudinal curvature: finite and positive.
+fn valid_curvature(curv: f64) -> bool {
+    curv.is_finite() && curv > 0.0
+}
+
+/// The B floor B_min of `params`, or the default floor when the parameter is not a finite
+/// positive number [1/m].
+fn lateral_curvature_floor(params: &NormalParams) -> f64 {
+    if valid_curvature(params.b_min) {
+        params.b_min
+    } else {
+        NormalParams::default().b_min
+    }
+}
+
+/// Number of strips used from `geom` (≤ [`MAX_STRIPS`]).
+fn strip_count(geom: &StripGeometry) -> usize {
+    geom.n.min(MAX_STRIPS)
+}
+
+/// Half window m (in strips) of the S0 filter: the window |j − i| ≤ m spans the fraction
+/// `fraction` of the `n` strips (m = ⌊fraction·n/2⌋; 0 = no smoothing).
+fn smoothing_half_window(fraction: f64, n: usize) -> usize {
+    if !(fraction > 0.0) {
+        return 0;
+    }
+    let m = (0.5 * fraction * n as f64).floor();
+    // Saturating: a window wider than the set is the whole set.
+    if m >= n as f64 {
+        n
+    } else {
+        m as usize
+    }
+}
+
+/// S0 filter: `out[i]` = value at strip i of the least-squares parabola through `values[j]`,
+/// |j − i| ≤ `half_window` (truncated at the ends), in the strip index (uniform strips). Fewer than
+/// three points in the window (or `half_window` = 0) copy the value. `out.len()` ≥ `values.len()`.
+fn smooth_least_squares_parabola(values: &[f64], half_window: usize, out: &mut [f64]) {
+    let n = values.len();
+    for i in 0..n {
+        let lo = i.saturating_sub(half_window);
+        let hi = (i + half_window).min(n - 1);
+        out[i] = if hi - lo < 2 {
+            values[i]
+        } else {
+            parabola_value_at_centre(&values[lo..=hi], i - lo, half_window)
+        };
+    }
+}
+
+/// Value at index `centre` of the least-squares parabola through `window` (≥ 3 points, unit
+/// spacing). Offsets are scaled by `scale` (the half window) so the normal equations stay well
+/// conditioned. A singular system (not reachable with ≥ 3 distinct points) returns the raw value.
+fn parabola_value_at_centre(window: &[f64], centre: usize, scale: usize) -> f64 {
+    let inv_scale = 1.0 / scale.max(1) as f64;
+    // Moments Σ t^k (k = 0…4) and Σ v t^k (k = 0…2), t = (j − centre)/scale.
+    let mut m = [0.0_f64; 5];
+    let mut r = [0.0_f64; 3];
+    for (j, &v) in window.iter().enumerate() {
+        let t = (j as f64 - centre as f64) * inv_scale;
+        let t2 = t * t;
+        m[0] += 1.0;
+        m[1] += t;
+        m[2] += t2;
+        m[3] += t2 * t;
+        m[4] += t2 * t2;
+        r[0] += v;
+        r[1] += v * t;
+        r[2] += v * t2;
+    }
+    // Normal equations [[m0 m1 m2] [m1 m2 m3] [m2 m3 m4]] c = r; c0 by Cramer's rule.
+    let det3 = |c0: [f64; 3], c1: [f64; 3], c2: [f64; 3]| {
+        c0[0] * (c1[1] * c2[2] - c1[2] * c2[1]) - c1[0] * (c0[1] * c2[2] - c0[2] * c2[1])
+            + c2[0] * (c0[1] * c1[2] - c0[2] * c1[1])
+    };
+    let col1 = [m[1], m[2], m[3]];
+    let col2 = [m[2], m[3], m[4]];
+    let det = det3([m[0], m[1], m[2]], col1, col2);
+    if !(det.abs() > f64::EPSILON * m[0] * m[2] * m[4]) {
+        return window[centre];
+    }
+    det3(r, col1, col2) / det
+}
+
+/// Index of the strip holding the first-contact point s = 0, or the end strip nearest to it when
+/// the set does not cover s = 0.
+fn origin_strip(geom: &StripGeometry, n: usize) -> usize {
+    if let Some(k) = geom.strip_at_origin() {
+        if k < n {
+            return k;
+        }
+    }
+    if n == 0 || geom.s[0] > 0.0 {
+        0
+    } else {
+        n - 1
+    }
+}
+
+/// S3: f*_i = ∫₀^{s_i} (s_i − t) 2B*(t) dt at the strip centres, 2B* piecewise constant on the
+/// strips (B*_i on [s_i − Δs/2, s_i + Δs/2]) and extended by the end strips' values; `origin` is
+/// the strip holding s = 0 (or the nearest end strip). Exact (to round-off) for constant B*:
+/// f* = B* s².
+fn integrate_corrected_gap(
+    s: &[f64],
+    half_width: f64,
+    origin: usize,
+    curv_b_corr: &[f64],
+    gap_corr: &mut [f64],
+) {
+    let n = s.len();
+    if n == 0 {
+        return;
+    }
+    // Inside the origin strip the curvature is constant: f* = B* s².
+    let b0 = curv_b_corr[origin];
+    gap_corr[origin] = b0 * s[origin] * s[origin];
+    // March outwards carrying (edge position, f*, f*') across strip edges.
+    let edge_r = s[origin] + half_width;
+    let (mut e, mut f, mut df) = (edge_r, b0 * edge_r * edge_r, 2.0 * b0 * edge_r);
+    for i in origin + 1..n {
+        let (to_centre, to_edge) = (s[i] - e, s[i] + half_width - e);
+        let b = curv_b_corr[i];
+        gap_corr[i] = f + df * to_centre + b * to_centre * to_centre;
+        f += df * to_edge + b * to_edge * to_edge;
+        df += 2.0 * b * to_edge;
+        e += to_edge;
+    }
+    let edge_l = s[origin] - half_width;
+    let (mut e, mut f, mut df) = (edge_l, b0 * edge_l * edge_l, 2.0 * b0 * edge_l);
+    for i in (0..origin).rev() {
+        // Distances are negative going left; the Taylor expansion is the same.
+        let (to_centre, to_edge) = (s[i] - e, s[i] - half_width - e);
+        let b = curv_b_corr[i];
+        gap_corr[i] = f + df * to_centre + b * to_centre * to_centre;
+        f += df * to_edge + b * to_edge * to_edge;
+        df += 2.0 * b * to_edge;
+        e += to_edge;
+    }
+}
+
+/// Per-strip data after the curvature corrections, common to both approaches: the strip touches
+/// where f*_i < ε_v,i δ, with x_l,i = √((ε_v,i δ − f*_i)/A*_i) and p0_i = E* κ_i x_l,i.
+#[derive(Debug, Clone)]
+struct CorrectedStrips {
+    /// Strips prepared (≤ [`MAX_STRIPS`]).
+    n: usize,
+    /// Strip can be in contact (A_i finite and positive).
+    active: [bool; MAX_STRIPS],
+    /// Lateral curvature the model uses: smoothed and floored (A3) or shifted (A4) [1/m].
+    curv_b: [f64; MAX_STRIPS],
+    /// Virtual-penetration factor ε_v,i: ε_i (A3), ε̃_i (A4) [-].
+    penetration_factor: [f64; MAX_STRIPS],
+    /// Longitudinal curvature in S4: A_i (A3), A*_i (A4) [1/m].
+    curv_a_corr: [f64; MAX_STRIPS],
+    /// Corrected lateral curvature B*_i [1/m].
+    curv_b_corr: [f64; MAX_STRIPS],
+    /// Corrected gap f*_i at the strip centre (S3) [m].
+    gap_corr: [f64; MAX_STRIPS],
+    /// κ_i = P √(A (A + B)/ε_x) of the original curvatures (S5) [1/m].
+    peak_per_half_length: [f64; MAX_STRIPS],
+}
+
+impl Default for CorrectedStrips {
+    fn default() -> Self {
+        Self {
+            n: 0,
+            active: [false; MAX_STRIPS],
+            curv_b: [0.0; MAX_STRIPS],
+            penetration_factor: [0.0; MAX_STRIPS],
+            curv_a_corr: [0.0; MAX_STRIPS],
+            curv_b_corr: [0.0; MAX_STRIPS],
+            gap_corr: [0.0; MAX_STRIPS],
+            peak_per_half_length: [0.0; MAX_STRIPS],
+        }
+    }
+}
+
+impl CorrectedStrips {
+    /// S3 on the prepared B*: fills `gap_corr`.
+    fn integrate(&mut self, geom: &StripGeometry) {
+        let n = self.n;
+        let origin = origin_strip(geom, n);
+        integrate_corrected_gap(
+            &geom.s[..n],
+            0.5 * geom.ds,
+            origin,
+            &self.curv_b_corr[..n],
+            &mut self.gap_corr[..n],
+        );
+    }
+
+    /// S4–S6 at approach δ: writes `out` and returns N.
+    fn solve(&self, geom: &StripGeometry, e_star: f64, delta: f64, out: &mut StripSolution) -> f64 {
+        let n = strip_count(geom);
+        out.reset(n);
+        if !(delta > 0.0 && delta.is_finite() && geom.ds > 0.0 && geom.ds.is_finite()) {
+            return 0.0;
+        }
+        for i in 0..n.min(self.n) {
+            if !self.active[i] {
+                continue;
+            }
+            // S4: interpenetration budget ε_v δ − f* of the strip's centre line.
+            let budget = self.penetration_factor[i] * delta - self.gap_corr[i];
+            if budget > 0.0 {
+                let half_length = (budget / self.curv_a_corr[i]).sqrt();
+                // S5
+                let pmax = e_star * self.peak_per_half_length[i] * half_length;
+                out.set(i, half_length, pmax, geom.ds);
+            }
+        }
+        out.normal_force()
+    }
+}
+
+/// STRIPES Approach 3: local B corrected by the Hertz split, smoothed and floored (S0–S6,
+/// physics.md §5.6). See the module documentation.
+#[derive(Debug, Clone)]
+pub struct StripesB {
+    strips: CorrectedStrips,
+    /// Raw B with non-finite values replaced by B_min (input of the S0 filter) [1/m].
+    curv_b_raw: [f64; MAX_STRIPS],
+}
+
+impl Default for StripesB {
+    fn default() -> Self {
+        Self {
+            strips: CorrectedStrips::default(),
+            curv_b_raw: [0.0; MAX_STRIPS],
+        }
+    }
+}
+
+impl StripesB {
+    /// Lateral curvature after S0 (smoothed, floored) per strip, from the last `prepare` [1/m].
+    pub fn curv_b(&self) -> &[f64] {
+        &self.strips.curv_b[..self.strips.n]
+    }
+
+    /// Shape factor ε_i (S1) per strip [-].
+    pub fn shape_factor(&self) -> &[f64] {
+        &self.strips.penetration_factor[..self.strips.n]
+    }
+
+    /// Corrected gap f*_i at the strip centres (S3) [m].
+    pub fn corrected_gap(&self) -> &[f64] {
+        &self.strips.gap_corr[..self.strips.n]
+    }
+}
+
+impl StripModel for StripesB {
+    fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
+        let n = strip_count(geom);
+        let b_min = lateral_curvature_floor(params);
+        let st = &mut self.strips;
+        st.n = n;
+        for (raw, &b) in self.curv_b_raw[..n].iter_mut().zip(&geom.curv_b[..n]) {
+            *raw = if b.is_finite() { b } else { b_min };
+        }
+        // S0: smoothing, then the replacement floor.
+        let half_window = smoothing_half_window(params.b_smoothing, n);
+        smooth_least_squares_parabola(&self.curv_b_raw[..n], half_window, &mut st.curv_b[..n]);
+        for b in &mut st.curv_b[..n] {
+            // `!(b > b_min)` also maps a NaN (overflowing fit) to the floor.
+            if !(*b > b_min) {
+                *b = b_min;
+            }
+        }
+        for i in 0..n {
+            let (a, b) = (geom.curv_a[i], st.curv_b[i]);
+            st.active[i] = valid_curvature(a);
+            if st.active[i] {
+                let shape = local_shape(table, a, b);
+                let eps = shape.eps_x; // S1
+                st.penetration_factor[i] = eps;
+                st.curv_a_corr[i] = a;
+                st.curv_b_corr[i] = b * eps / (1.0 - eps); // S2
+                st.peak_per_half_length[i] = hertz_peak_per_half_length(a, b, &shape);
+            } else {
+                st.penetration_factor[i] = 0.0;
+                st.curv_a_corr[i] = 0.0;
+                st.curv_b_corr[i] = b;
+                st.peak_per_half_length[i] = 0.0;
+            }
+        }
+        st.integrate(geom); // S3
+    }
+
+    fn solve(
+        &mut self,
+        geom: &StripGeometry,
+        params: &NormalParams,
+        _table: &HertzShapeTable,
+        delta: f64,
+        out: &mut StripSolution,
+    ) -> f64 {
+        self.strips.solve(geom, params.e_star, delta, out)
+    }
+}
+
+/// STRIPES Approach 4 (reconstructed, experimental): A and B corrected with the cube-root split
+/// ε̃, B shifted by one constant, no smoothing (physics.md §5.7). See the module documentation.
+#[derive(Debug, Clone, Default)]
+pub struct StripesAB {
+    strips: CorrectedStrips,
+    /// The constant added to every B by the shift rule in the last `prepare` [1/m].
+    curv_b_shift: f64,
+}
+
+impl StripesAB {
+    /// Lateral curvature after the shift per strip, from the last `prepare` [1/m].
+    pub fn curv_b(&self) -> &[f64] {
+        &self.strips.curv_b[..self.strips.n]
+    }
+
+    /// Shift max(0, B_min − min_j B_j) applied to every B [1/m].
+    pub fn curv_b_shift(&self) -> f64 {
+        self.curv_b_shift
+    }
+
+    /// Corrected gap f*_i at the strip centres [m].
+    pub fn corrected_gap(&self) -> &[f64] {
+        &self.strips.gap_corr[..self.strips.n]
+    }
+}
+
+impl StripModel for StripesAB {
+    fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
+        let n = strip_count(geom);
+        let b_min = lateral_curvature_floor(params);
+        let st = &mut self.strips;
+        st.n = n;
+        for (b, &raw) in st.curv_b[..n].iter_mut().zip(&geom.curv_b[..n]) {
+            *b = if raw.is_finite() { raw } else { b_min };
+        }
+        // Shift rule: one constant for the whole patch.
+        let b_lowest = st.curv_b[..n].iter().copied().fold(f64::INFINITY, f64::min);
+        self.curv_b_shift = if b_lowest < b_min {
+            b_min - b_lowest
+        } else {
+            0.0
+        };
+        for i in 0..n {
+            let b = st.curv_b[i] + self.curv_b_shift;
+            // Round-off of the shift must not leave B below the floor.
+            let b = if b > b_min { b } else { b_min };
+            st.curv_b[i] = b;
+            let a = geom.curv_a[i];
+            st.active[i] = valid_curvature(a);
+            if st.active[i] {
+                let shape = local_shape(table, a, b);
+                let eps_approx = approximate_shape_factor(a, b);
+                st.penetration_factor[i] = eps_approx;
+                st.curv_a_corr[i] = a * eps_approx / shape.eps_x;
+                st.curv_b_corr[i] = b * eps_approx / (1.0 - eps_approx);
+                st.peak_per_half_length[i] = hertz_peak_per_half_length(a, b, &shape);
+            } else {
+                st.penetration_factor[i] = 0.0;
+                st.curv_a_corr[i] = 0.0;
+                st.curv_b_corr[i] = b;
+                st.peak_per_half_length[i] = 0.0;
+            }
+        }
+        st.integrate(geom);
+    }
+
+    fn solve(
+        &mut self,
+        geom: &StripGeometry,
+        params: &NormalParams,
+        _table: &HertzShapeTable,
+        delta: f64,
+        out: &mut StripSolution,
+    ) -> f64 {
+        self.strips.solve(geom, params.e_star, delta, out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hertz::{hertz_from_approach, HertzPatch};
+    use crate::strips::PatchSummary;
+    use std::sync::OnceLock;
+
+    /// Tolerance of per-strip comparisons with exact Hertz, normalised by a² or p0: the table's
+    /// 1e−7 relative accuracy of ε_x and P (strips.rs), amplified at most a few times by
+    /// x_l² = (εδ − B* s²)/A (two terms of size ≤ εδ).
+    const TABLE_TOL: f64 = 1e-6;
+    /// Lateral curvature of the Hertz cases [1/m] (flat-tread wheel on a 600 mm crown).
+    const CURV_B: f64 = 1.5;
+    /// Approach of the Hertz cases [m].
+    const DELTA: f64 = 50e-6;
+    /// Curvature ratios A/B of the brief's exactness check (physics.md §5.6).
+    const RATIOS: [f64; 5] = [1.0, 1.0 / 3.0, 0.1, 3.0, 0.02];
+
+    fn table() -> &'static HertzShapeTable {
+        static TABLE: OnceLock<HertzShapeTable> = OnceLock::new();
+        TABLE.get_or_init(HertzShapeTable::new)
+    }
+
+    fn params() -> NormalParams {
+        NormalParams::default()
+    }
+
+    fn run(
+        model: &mut impl StripModel,
+        geom: &StripGeometry,
+        params: &NormalParams,
+        delta: f64,
+    ) -> (StripSolution, f64) {
+        let mut out = StripSolution::default();
+        model.prepare(geom, params, table());
+        let n = model.solve(geom, params, table(), delta, &mut out);
+        (out, n)
+    }
+
+    fn hertz(ratio: f64) -> (f64, HertzPatch) {
+        let a = ratio * CURV_B;
+        (a, hertz_from_approach(a, CURV_B, DELTA, params().e_star).unwrap())
+    }
+
+    /// Largest deviation of the strips from the Hertz-like pressure x_l² = a²(1 − s²/w²),
+    /// p0_i = p0 √(1 − s²/w²) (w: lateral semi-axis), normalised by a² and p0; also checks that
+    /// exactly the strips with |s| < w are in contact.
+    fn profile_error(geom: &StripGeometry, sol: &StripSolution, a: f64, w: f64, p0: f64) -> f64 {
+        let mut err: f64 = 0.0;
+        for i in 0..geom.n {
+            let q = 1.0 - (geom.s[i] / w).powi(2);
+            assert_eq!(sol.half_length[i] > 0.0, q > 0.0, "strip {i}, s = {}", geom.s[i]);
+            let q = q.max(0.0);
+            err = err.max((sol.half_length[i].powi(2) - a * a * q).abs() / (a * a));
+            err = err.max((sol.pmax[i] - p0 * q.sqrt()).abs() / p0);
+        }
+        err
+    }
+
+    fn no_nan(sol: &StripSolution, n_total: f64) {
+        assert!(n_total.is_finite() && n_total >= 0.0, "N = {n_total}");
+        for i in 0..sol.n {
+            for v in [sol.half_length[i], sol.pmax[i], sol.force[i]] {
+                assert!(v.is_finite() && v >= 0.0, "strip {i}: {v}");
+            }
+        }
+    }
+
+    #[test]
+    fn stripes_b_reproduces_hertz() {
+        // 199 strips on [−b, b]: a strip centred on s = 0 and the Hertz edges on strip edges, so
+        // a and p0 are sampled exactly and the V1 midpoint sum of ∝ (1 − s²/b²) is exactly
+        // N_H (1 + Δs²/(8b²)) (1.26e−5 here; 400 strips are beyond MAX_STRIPS).
+        for ratio in RATIOS {
+            let (curv_a, h) = hertz(ratio);
+            let geom = StripGeometry::quadratic(curv_a, CURV_B, -h.b, h.b, 199);
+            let (sol, n) = run(&mut StripesB::default(), &geom, &params(), DELTA);
+            let sum = PatchSummary::of(&geom, &sol);
+            let err = profile_error(&geom, &sol, h.a, h.b, h.p0);
+            let midpoint = 1.0 + (geom.ds / h.b).powi(2) / 8.0;
+            eprintln!(
+                "A/B = {ratio:.4}: profile {err:.2e}, a {:.2e}, p0 {:.2e}, N/N_H − 1 {:.2e}, \
+                 N/(N_H·midpoint) − 1 {:.2e}",
+                sum.length / (2.0 * h.a) - 1.0,
+                sum.pmax / h.p0 - 1.0,
+                n / h.normal_force - 1.0,
+                n / (h.normal_force * midpoint) - 1.0
+            );
+            assert!(err < TABLE_TOL);
+            assert!((sum.length / (2.0 * h.a) - 1.0).abs() < TABLE_TOL);
+            assert!((sum.pmax / h.p0 - 1.0).abs() < TABLE_TOL);
+            assert!((sum.width / (2.0 * h.b) - 1.0).abs() < 1e-12);
+            assert!((n / (h.normal_force * midpoint) - 1.0).abs() < TABLE_TOL);
+            assert!((n / h.normal_force - 1.0).abs() < 1.3e-5);
+        }
+    }
+}

@@ -250,6 +250,72 @@ pub trait StripModel {
     ) -> f64;
 }
 
+/// The normal contact models (FMU parameter `normalModel`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NormalModel {
+    /// 1: Hertz per contact patch (multi-Hertzian), no strips.
+    #[default]
+    Hertz,
+    /// 2: Linder's virtual penetration (`crate::linder`).
+    Linder,
+    /// 3: Kik–Piotrowski (`crate::kik_piotrowski`).
+    KikPiotrowski,
+    /// 4: STRIPES with B correction and smoothing (`crate::stripes::StripesB`).
+    StripesB,
+    /// 5: STRIPES with A-and-B correction, no smoothing (`crate::stripes::StripesAB`).
+    StripesAB,
+    /// 6: ANALYN (`crate::analyn`).
+    Analyn,
+}
+
+impl NormalModel {
+    /// All models in FMU order (`normalModel` = index + 1).
+    pub const ALL: [NormalModel; 6] = [
+        NormalModel::Hertz,
+        NormalModel::Linder,
+        NormalModel::KikPiotrowski,
+        NormalModel::StripesB,
+        NormalModel::StripesAB,
+        NormalModel::Analyn,
+    ];
+
+    /// The model of FMU code `code` (1…6).
+    pub fn from_code(code: i32) -> Option<Self> {
+        usize::try_from(code - 1)
+            .ok()
+            .and_then(|i| Self::ALL.get(i).copied())
+    }
+
+    /// FMU code (1…6).
+    pub fn code(self) -> i32 {
+        Self::ALL.iter().position(|m| *m == self).map_or(1, |i| i as i32 + 1)
+    }
+
+    /// Short name (CLI, reports).
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalModel::Hertz => "hertz",
+            NormalModel::Linder => "linder",
+            NormalModel::KikPiotrowski => "kik-piotrowski",
+            NormalModel::StripesB => "stripes-b",
+            NormalModel::StripesAB => "stripes-ab",
+            NormalModel::Analyn => "analyn",
+        }
+    }
+
+    /// The model named `name` (as [`NormalModel::name`]).
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().copied().find(|m| m.name() == name)
+    }
+
+    /// A solver for a strip model; `None` for Hertz (no strips).
+    pub fn strip_model(self) -> Option<Box<dyn StripModel + Send>> {
+        // DISPATCH-PENDING
+        let _ = self;
+        None
+    }
+}
+
 /// Hertz quantities that depend only on the curvature ratio A/B.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HertzShape {

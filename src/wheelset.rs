@@ -33,7 +33,11 @@ use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use crate::hertz::{contact_modulus, hertz_from_approach, shear_modulus};
 use crate::point_contact::Material;
 use crate::profile::Profile;
+use crate::strips::{
+    HertzShapeTable, NormalModel, NormalParams, DEFAULT_B_SMOOTHING, DEFAULT_STRIPS, MAX_STRIPS,
+};
 use crate::track::{GeometryError, TrackSetup};
+use crate::wheel_strips::{StripSettings, StripSide};
 
 /// Patches reported per wheel.
 pub const MAX_PATCHES: usize = 3;
@@ -45,6 +49,9 @@ pub const V_MIN: f64 = 0.01;
 
 /// Relative tolerance on the vertical force balance.
 const LOAD_TOLERANCE: f64 = 1e-9;
+/// Smallest share of the wheel load the normal forces carry when the creep forces' vertical
+/// components are subtracted (they cannot carry the wheel: |Fy| ≤ μN).
+const MIN_NORMAL_SHARE: f64 = 0.05;
 /// Iteration limit of the load balance (safeguarded secant; converges in ~5–10).
 const LOAD_ITERATIONS: usize = 60;
 
@@ -58,6 +65,31 @@ pub struct WheelsetSettings {
     pub scan_step: f64,
     /// Floor of the relative lateral curvature B [1/m].
     pub b_min: f64,
+    /// Normal contact model.
+    pub normal_model: NormalModel,
+    /// Strips across each non-elliptic patch.
+    pub strips: usize,
+    /// STRIPES-B smoothing window of B, fraction of the patch width [-].
+    pub b_smoothing: f64,
+    /// Kik–Piotrowski area-preserving shape correction.
+    pub kp_shape_correction: bool,
+}
+
+impl WheelsetSettings {
+    /// Default settings for a track set-up: Hertz, default FASTSIM and strips.
+    pub fn new(setup: TrackSetup, material: Material) -> Self {
+        Self {
+            setup,
+            material,
+            fastsim: FastsimSettings::default(),
+            scan_step: crate::contact_search::DEFAULT_SCAN_STEP,
+            b_min: crate::contact_search::DEFAULT_B_MIN,
+            normal_model: NormalModel::Hertz,
+            strips: DEFAULT_STRIPS,
+            b_smoothing: DEFAULT_B_SMOOTHING,
+            kp_shape_correction: false,
+        }
+    }
 }
 
 /// How the wheels' vertical positions are set.
@@ -107,9 +139,13 @@ pub struct PatchResult {
     pub mz: f64,
     pub area: f64,
     pub pmax: f64,
-    /// Semi-axes of the patch ellipse along x and across [m].
+    /// Semi-axes of the patch ellipse along x and across [m] (non-elliptic patches: of the
+    /// equivalent ellipse, same area and length/width ratio).
     pub a: f64,
     pub b: f64,
+    /// Length along x (longest strip) and width across (in the contact plane) [m].
+    pub length: f64,
+    pub width: f64,
     pub y_rail: f64,
     pub contact_angle: f64,
     pub rolling_radius: f64,
@@ -181,6 +217,8 @@ struct Side {
     candidates: ContactCandidates,
     regions: [Region; MAX_PATCHES],
     fastsim: [Fastsim; MAX_PATCHES],
+    /// Strip patches of the non-elliptic models (`None` for Hertz).
+    strips: Option<StripSide>,
 }
 
 /// A wheelset contact solver; owns every buffer, so [`Wheelset::solve`] does not allocate.
@@ -188,6 +226,8 @@ pub struct Wheelset {
     settings: WheelsetSettings,
     e_star: f64,
     shear_modulus: f64,
+    /// Hertz shapes for the strip models (`None` for Hertz).
+    table: Option<HertzShapeTable>,
     left: Side,
     right: Side,
 }
@@ -200,6 +240,17 @@ impl Wheelset {
         settings: WheelsetSettings,
     ) -> Result<Self, GeometryError> {
         settings.material.validate()?;
+        if !(1..=MAX_STRIPS).contains(&settings.strips) {
+            return Err(InputError::new(
+                "nStrips",
+                settings.strips as f64,
+                "[1, 200]",
+            )
+            .into());
+        }
+        if !(settings.b_smoothing.is_finite() && (0.0..=1.0).contains(&settings.b_smoothing)) {
+            return Err(InputError::new("bSmoothing", settings.b_smoothing, "[0, 1]").into());
+        }
         let m = settings.material;
         let side = |name, sigma| -> Result<Side, GeometryError> {
             Ok(Side {
@@ -219,12 +270,14 @@ impl Wheelset {
                     Fastsim::new(settings.fastsim)?,
                     Fastsim::new(settings.fastsim)?,
                 ],
+                strips: StripSide::new(settings.normal_model),
             })
         };
         Ok(Self {
             settings,
             e_star: contact_modulus(m.youngs_modulus, m.poisson_ratio),
             shear_modulus: shear_modulus(m.youngs_modulus, m.poisson_ratio),
+            table: (settings.normal_model != NormalModel::Hertz).then(HertzShapeTable::new),
             left: side("left", -1.0)?,
             right: side("right", 1.0)?,
         })
@@ -243,6 +296,13 @@ impl Wheelset {
         }
     }
 
+    /// The strip patches of one wheel after the last solve (empty for Hertz). Those with a
+    /// positive normal force are the wheel's patches, in the same order.
+    pub fn strip_patches(&self, right: bool) -> &[crate::wheel_strips::StripPatch] {
+        let side = if right { &self.right } else { &self.left };
+        side.strips.as_ref().map_or(&[], |s| s.patches())
+    }
+
     /// Solves both wheels.
     pub fn solve(
         &mut self,
@@ -254,6 +314,17 @@ impl Wheelset {
             e_star: self.e_star,
             shear_modulus: self.shear_modulus,
             material: self.settings.material,
+            strips: StripSettings {
+                model: self.settings.normal_model,
+                strips: self.settings.strips,
+                params: NormalParams {
+                    e_star: self.e_star,
+                    b_min: self.settings.b_min,
+                    b_smoothing: self.settings.b_smoothing,
+                    kp_shape_correction: self.settings.kp_shape_correction,
+                },
+            },
+            table: self.table.as_ref(),
         };
         let (q_left, q_right, z) = match input.vertical {
             Vertical::Loads { left, right } => (Some(left), Some(right), 0.0),
@@ -301,11 +372,13 @@ fn check_input(input: &WheelsetInput) -> Result<(), InputError> {
     Ok(())
 }
 
-/// Material constants shared by both sides.
-struct Context {
+/// Material constants and model settings shared by both sides.
+struct Context<'a> {
     e_star: f64,
     shear_modulus: f64,
     material: Material,
+    strips: StripSettings,
+    table: Option<&'a HertzShapeTable>,
 }
 
 /// Creepages of the wheel relative to the rail at contact point `p` with contact angle `gamma`.
@@ -367,57 +440,198 @@ fn evaluate_side(
         let region = side.regions[k];
         let deepest = side.geometry.point_at(region.deepest as f64);
         let reference = side.geometry.point_at(region.centroid_index);
-        let gamma = reference.contact_angle;
         let approach = region.depth * deepest.contact_angle.cos();
         let patch = hertz_from_approach(deepest.curv_a, deepest.curv_b, approach, ctx.e_star)?;
         if !(patch.a.is_normal() && patch.b.is_normal()) {
             continue;
         }
-        let (creepage, speed) = creepages_at(input, side.sigma, &reference, gamma);
-        let mut result = PatchResult {
+        let result = PatchResult {
             fn_: patch.normal_force,
             area: patch.area(),
             pmax: patch.p0,
             a: patch.a,
             b: patch.b,
-            y_rail: reference.y_rail,
-            contact_angle: gamma,
-            rolling_radius: reference.rolling_radius,
+            length: 2.0 * patch.a,
+            width: 2.0 * patch.b,
             penetration: approach,
-            creepage,
             curv_a: deepest.curv_a,
             curv_b: deepest.curv_b,
             ..PatchResult::default()
         };
-        let contact = EllipticContact {
-            a: patch.a,
-            b: patch.b,
-            normal_force: patch.normal_force,
-            shear_modulus: ctx.shear_modulus,
-            nu: ctx.material.poisson_ratio,
-            mu: ctx.material.friction,
-        };
-        let t = side.fastsim[out.n_patches].solve(&contact, &creepage, speed)?;
-        result.fx = t.fx;
-        result.fy = t.fy;
-        result.mz = t.mz;
-        result.adhesion_fraction = t.adhesion_fraction;
-        result.frictional_power = t.frictional_power;
-        result.max_traction = t.max_traction;
-        let (sin_g, cos_g) = gamma.sin_cos();
-        let s = side.sigma;
-        let e_x = [1.0, 0.0, 0.0];
-        let e_y = [0.0, cos_g, -s * sin_g];
-        let e_z = [0.0, s * sin_g, cos_g];
-        for i in 0..3 {
-            force[i] += result.fx * e_x[i] + result.fy * e_y[i] - result.fn_ * e_z[i];
-        }
-        upward += result.fn_ * cos_g + s * result.fy * sin_g;
-        out.patches[out.n_patches] = result;
-        out.n_patches += 1;
+        upward += add_patch(side, ctx, input, &reference, result, out, &mut force)?;
     }
     out.force = force;
     Ok(upward)
+}
+
+/// Completes a patch whose normal solution is in `result` (normal force, size, approach): the
+/// reference point's position and angle, creepages, FASTSIM on the patch's (equivalent)
+/// ellipse; stores it in the next slot of `out`, adds its force to `force` (track axes) and
+/// returns its upward force on the wheel [N].
+fn add_patch(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    reference: &ContactPoint,
+    mut result: PatchResult,
+    out: &mut SideResult,
+    force: &mut [f64; 3],
+) -> Result<f64, InputError> {
+    if out.n_patches >= MAX_PATCHES {
+        return Ok(0.0);
+    }
+    let gamma = reference.contact_angle;
+    let (creepage, speed) = creepages_at(input, side.sigma, reference, gamma);
+    result.y_rail = reference.y_rail;
+    result.contact_angle = gamma;
+    result.rolling_radius = reference.rolling_radius;
+    result.creepage = creepage;
+    let contact = EllipticContact {
+        a: result.a,
+        b: result.b,
+        normal_force: result.fn_,
+        shear_modulus: ctx.shear_modulus,
+        nu: ctx.material.poisson_ratio,
+        mu: ctx.material.friction,
+    };
+    let t = side.fastsim[out.n_patches].solve(&contact, &creepage, speed)?;
+    result.fx = t.fx;
+    result.fy = t.fy;
+    result.mz = t.mz;
+    result.adhesion_fraction = t.adhesion_fraction;
+    result.frictional_power = t.frictional_power;
+    result.max_traction = t.max_traction;
+    let (sin_g, cos_g) = gamma.sin_cos();
+    let s = side.sigma;
+    let e_x = [1.0, 0.0, 0.0];
+    let e_y = [0.0, cos_g, -s * sin_g];
+    let e_z = [0.0, s * sin_g, cos_g];
+    for i in 0..3 {
+        force[i] += result.fx * e_x[i] + result.fy * e_y[i] - result.fn_ * e_z[i];
+    }
+    out.patches[out.n_patches] = result;
+    out.n_patches += 1;
+    Ok(result.fn_ * cos_g + s * result.fy * sin_g)
+}
+
+/// Writes the outputs of the strip patches of `side` (solved at lowering `dz`): patch figures
+/// from the strips, reference point at the patch's force centroid (interpolated between strips),
+/// tangential forces by FASTSIM on the equivalent ellipse (same area and length/width ratio,
+/// physics.md §4.8). Returns the upward force on the wheel [N].
+fn evaluate_strips(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    dz: f64,
+    out: &mut SideResult,
+) -> Result<f64, InputError> {
+    *out = SideResult {
+        z: dz,
+        ..SideResult::default()
+    };
+    let Some(strips) = side.strips.take() else {
+        return Ok(0.0);
+    };
+    let mut upward = 0.0;
+    let mut force = [0.0; 3];
+    let mut status = Ok(());
+    for patch in strips.patches() {
+        let summary = patch.summary();
+        if !(summary.normal_force > 0.0 && summary.area > 0.0 && summary.width > 0.0) {
+            continue;
+        }
+        let sc = summary.s_centroid;
+        let at = |v: &[f64]| patch.interpolate(v, sc);
+        let reference = ContactPoint {
+            lateral: at(&patch.points.lateral),
+            longitudinal: at(&patch.geom.x_c),
+            y_rail: at(&patch.points.y_rail),
+            contact_angle: at(&patch.points.contact_angle),
+            rolling_radius: at(&patch.points.rolling_radius),
+            curv_a: at(&patch.geom.curv_a),
+            curv_b: at(&patch.geom.curv_b),
+            ..ContactPoint::default()
+        };
+        let aspect = (summary.length / summary.width).sqrt();
+        let radius = (summary.area / std::f64::consts::PI).sqrt();
+        let result = PatchResult {
+            fn_: summary.normal_force,
+            area: summary.area,
+            pmax: summary.pmax,
+            a: radius * aspect,
+            b: radius / aspect,
+            length: summary.length,
+            width: summary.width,
+            penetration: patch.plane.approach(dz),
+            curv_a: reference.curv_a,
+            curv_b: reference.curv_b,
+            ..PatchResult::default()
+        };
+        match add_patch(side, ctx, input, &reference, result, out, &mut force) {
+            Ok(up) => upward += up,
+            Err(e) => {
+                status = Err(e);
+                break;
+            }
+        }
+    }
+    side.strips = Some(strips);
+    status?;
+    out.force = force;
+    Ok(upward)
+}
+
+/// Vertical component of the creep forces of `out` on the wheel (upwards positive) [N].
+fn creep_upward(out: &SideResult, sigma: f64) -> f64 {
+    out.patches[..out.n_patches]
+        .iter()
+        .map(|p| sigma * p.fy * p.contact_angle.sin())
+        .sum()
+}
+
+/// Replaces the Hertz solution in `out` by the side's strip model: `load` prescribed (the Hertz
+/// solution's lowering is the starting guess) or the lowering `z`.
+fn solve_strips(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    load: Option<f64>,
+    touch: f64,
+    out: &mut SideResult,
+) -> Result<(), WheelsetError> {
+    let (Some(mut strips), Some(table)) = (side.strips.take(), ctx.table) else {
+        return Ok(());
+    };
+    let hint = out.z;
+    let solve = |strips: &mut StripSide, side: &Side, target: Option<f64>, hint: f64| {
+        strips.solve(
+            &side.geometry,
+            &side.candidates,
+            &ctx.strips,
+            table,
+            target,
+            touch,
+            hint,
+        )
+    };
+    // The creep forces' vertical component, from the Hertz solution first; a second pass
+    // corrects it with the strip model's own creep forces.
+    let mut creep = creep_upward(out, side.sigma);
+    let mut dz = hint;
+    for pass in 0..2 {
+        let target = load.map(|q| (q - creep).max(MIN_NORMAL_SHARE * q));
+        dz = solve(&mut strips, side, target, dz);
+        side.strips = Some(strips);
+        evaluate_strips(side, ctx, input, dz, out)?;
+        let new_creep = creep_upward(out, side.sigma);
+        let Some(q) = load else { break };
+        if pass == 1 || (new_creep - creep).abs() <= LOAD_TOLERANCE * q {
+            break;
+        }
+        creep = new_creep;
+        strips = side.strips.take().expect("strip buffers were just returned");
+    }
+    Ok(())
 }
 
 fn solve_side(
@@ -446,6 +660,23 @@ fn solve_side(
         .iter()
         .map(|c| c.gap)
         .fold(f64::INFINITY, f64::min);
+    hertz_side(side, ctx, input, load, z, touch, out)?;
+    if load != Some(0.0) {
+        solve_strips(side, ctx, input, load, touch, out)?;
+    }
+    Ok(())
+}
+
+/// Multi-Hertzian solution of one wheel (also the starting guess of the strip models).
+fn hertz_side(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    load: Option<f64>,
+    z: f64,
+    touch: f64,
+    out: &mut SideResult,
+) -> Result<(), WheelsetError> {
     let Some(q) = load else {
         evaluate_side(side, ctx, input, z, out)?;
         return Ok(());

@@ -40,8 +40,6 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use railcontact::contact_search::{DEFAULT_B_MIN, DEFAULT_SCAN_STEP};
-use railcontact::fastsim::FastsimSettings;
 use railcontact::point_contact::Material;
 use railcontact::profile::{Profile, ProfileKind};
 use railcontact::track::TrackSetup;
@@ -203,8 +201,8 @@ fn benchmark_wheelset() -> Wheelset {
     };
     let wheel = load("MBench_S1002_v3.prw", ProfileKind::Wheel);
     let rail = load("MBench_UIC60_v3.prr", ProfileKind::Rail);
-    let settings = WheelsetSettings {
-        setup: TrackSetup {
+    let settings = WheelsetSettings::new(
+        TrackSetup {
             rail_inclination: 0.0,
             track_gauge: 1.435,
             gauge_depth: 0.014,
@@ -212,15 +210,12 @@ fn benchmark_wheelset() -> Wheelset {
             flange_back_position: -0.070,
             wheel_radius: 0.46,
         },
-        material: Material {
+        Material {
             youngs_modulus: 2.0 * G * (1.0 + NU),
             poisson_ratio: NU,
             friction: MU,
         },
-        fastsim: FastsimSettings::default(),
-        scan_step: DEFAULT_SCAN_STEP,
-        b_min: DEFAULT_B_MIN,
-    };
+    );
     Wheelset::new(&wheel, &rail, settings).expect("benchmark wheelset")
 }
 

@@ -29,7 +29,7 @@ const USAGE: &str = "\
 railcontact - the WheelRailContact FMU's wheel-rail contact model on the command line
 
 Usage:
-  railcontact solve [CASE.json]
+  railcontact solve [CASE.json] [--grid NX]
   railcontact sweep [CASE.json] [--from Y0] [--to Y1] [--step DY]
   railcontact help | --help | -h
 
@@ -43,10 +43,13 @@ first, then in the working directory.
 
 solve   Evaluates the model once (the FMU's own code) and prints a JSON object: every output by
         name (nPatches as integers), and \"strips\": for each patch in contact (\"left.p1\", ...)
-        the patch cut into 21 strips across the rolling direction, each with
+        its strips across the rolling direction (Hertz: the ellipse cut into 21 strips;
+        normalModel 2-6: the model's own strips in contact), each with
         s [m] (lateral coordinate in the contact plane, towards the field side), yRail [m],
         xLead, xTrail [m] (leading and trailing edge), pmax [Pa] (strip maximum pressure),
-        A, B [1/m] (relative curvatures).
+        A, B [1/m] (relative curvatures; B as the strip geometry gives it, before any floor).
+        --grid NX adds \"grid\": per patch the pressure at NX element centres along each
+        strip, as [x, s, p] triples (m, m, Pa).
 sweep   Evaluates the model over the lateral shift y from Y0 to Y1 in steps of DY (metres;
         default -0.002 to 0.008, step 0.0005; the case's y is ignored) and prints a table per
         wheel: number of patches, then per patch yRail [mm], contact angle [rad], normal force
@@ -57,8 +60,10 @@ Exit codes: 0 success; 1 bad arguments, case file, profile file or value; 2 (sol
 has no contact inside the profiles.
 ";
 
-/// Strips per patch in `solve`'s strip tables.
+/// Strips per patch in `solve`'s strip tables of Hertz patches.
 const STRIPS: usize = 21;
+/// Most pressure-grid points per strip (`solve --grid`).
+const MAX_GRID: usize = 1000;
 /// Most rows a sweep may have.
 const MAX_ROWS: usize = 100_000;
 
@@ -119,8 +124,23 @@ fn run() -> Result<i32, Failure> {
     }
     match command.as_str() {
         "solve" => {
-            let case = positional(rest, &[])?.case;
-            emit(&solve(case.as_deref())?)?;
+            let a = positional(rest, &["--grid"])?;
+            let grid = match a.options.iter().rev().find(|(k, _)| k == "--grid") {
+                None => None,
+                Some((_, v)) => Some(
+                    v.trim()
+                        .parse::<usize>()
+                        .ok()
+                        .filter(|n| (2..=MAX_GRID).contains(n))
+                        .ok_or_else(|| {
+                            Failure::Error(format!(
+                                "--grid {v}: expected a whole number of points per strip in \
+                                 [2, {MAX_GRID}]"
+                            ))
+                        })?,
+                ),
+            };
+            emit(&solve(a.case.as_deref(), grid)?)?;
             Ok(0)
         }
         "sweep" => {
@@ -368,11 +388,11 @@ fn model(values: &Values) -> Result<Box<dyn Model>, Failure> {
 // ---------------------------------------------------------------------------------------------
 // solve
 
-fn solve(case: Option<&str>) -> Result<String, Failure> {
+fn solve(case: Option<&str>, grid: Option<usize>) -> Result<String, Failure> {
     let mut values = load_case(case)?;
     let mut model = model(&values)?;
     model.evaluate(&mut values, 0.0)?;
-    let patches = wheelset_result(&values)?;
+    let (wheelset, patches) = wheelset_result(&values)?;
     check_same(&values, &patches)?;
 
     let mut out = String::from("{\n");
@@ -391,12 +411,26 @@ fn solve(case: Option<&str>) -> Result<String, Failure> {
     }
     out.push_str("  \"strips\": {");
     let mut first = true;
-    for (side, result) in [("left", &patches.left), ("right", &patches.right)] {
+    let mut tables = Vec::new();
+    for (side, result, right) in [("left", &patches.left, false), ("right", &patches.right, true)] {
+        let mut model_strips = wheelset
+            .strip_patches(right)
+            .iter()
+            .filter(|p| p.summary().normal_force > 0.0);
         for (k, patch) in result.patches[..result.n_patches].iter().enumerate() {
+            let table = match model_strips.next() {
+                Some(sp) => patch_strips(sp),
+                None => strips(patch),
+            };
+            tables.push((format!("{side}.p{}", k + 1), table));
+        }
+    }
+    for (name, table) in &tables {
+        {
             out.push_str(if first { "\n" } else { ",\n" });
             first = false;
-            let _ = write!(out, "    \"{side}.p{}\": [", k + 1);
-            for (i, strip) in strips(patch).iter().enumerate() {
+            let _ = write!(out, "    \"{name}\": [");
+            for (i, strip) in table.iter().enumerate() {
                 let _ = write!(
                     out,
                     "{}\n      {{\"s\": {}, \"yRail\": {}, \"xLead\": {}, \"xTrail\": {}, \
@@ -414,13 +448,56 @@ fn solve(case: Option<&str>) -> Result<String, Failure> {
             out.push_str("\n    ]");
         }
     }
-    out.push_str(if first { "}\n}\n" } else { "\n  }\n}\n" });
+    out.push_str(if first { "}" } else { "\n  }" });
+    if let Some(nx) = grid {
+        out.push_str(",\n  \"grid\": {");
+        for (k, (name, table)) in tables.iter().enumerate() {
+            let _ = write!(out, "{}\n    \"{name}\": [", if k == 0 { "" } else { "," });
+            let mut first_point = true;
+            for strip in table.iter().filter(|s| s.x_lead > s.x_trail) {
+                let (centre, half) = (0.5 * (strip.x_lead + strip.x_trail), 0.5 * (strip.x_lead - strip.x_trail));
+                for j in 0..nx {
+                    // Element centres of nx equal elements along the strip.
+                    let u = (2 * j + 1) as f64 / nx as f64 - 1.0;
+                    let p = strip.pmax * (1.0 - u * u).max(0.0).sqrt();
+                    let _ = write!(
+                        out,
+                        "{}\n      [{}, {}, {}]",
+                        if first_point { "" } else { "," },
+                        json::number(centre + half * u),
+                        json::number(strip.s),
+                        json::number(p)
+                    );
+                    first_point = false;
+                }
+            }
+            out.push_str("\n    ]");
+        }
+        out.push_str(if tables.is_empty() { "}" } else { "\n  }" });
+    }
+    out.push_str("\n}\n");
     Ok(out)
+}
+
+/// The strips of a non-elliptic patch as the model solved them (strips in contact only).
+fn patch_strips(p: &railcontact::wheel_strips::StripPatch) -> Vec<Strip> {
+    (0..p.geom.n)
+        .filter(|&i| p.sol.half_length[i] > 0.0)
+        .map(|i| Strip {
+            s: p.geom.s[i],
+            y_rail: p.points.y_rail[i],
+            x_lead: p.geom.x_c[i] + p.sol.half_length[i],
+            x_trail: p.geom.x_c[i] - p.sol.half_length[i],
+            pmax: p.sol.pmax[i],
+            a: p.geom.curv_a[i],
+            b: p.geom.curv_b[i],
+        })
+        .collect()
 }
 
 /// The wheelset solved directly with the model's own mapping from values to settings and input
 /// (for the patch semi-axes and curvatures, which are not FMU outputs).
-fn wheelset_result(values: &Values) -> Result<WheelsetResult, Failure> {
+fn wheelset_result(values: &Values) -> Result<(Wheelset, WheelsetResult), Failure> {
     let smoothing = values.real(var::profileSmoothing);
     let load = |spec: &str, kind| {
         Profile::load(spec, kind, smoothing).map_err(|e| Failure::Error(e.to_string()))
@@ -438,7 +515,7 @@ fn wheelset_result(values: &Values) -> Result<WheelsetResult, Failure> {
     wheelset
         .solve(&input, &mut result)
         .map_err(|e| Failure::Error(format!("internal error: the direct solve failed: {e}")))?;
-    Ok(result)
+    Ok((wheelset, result))
 }
 
 /// The direct solve must reproduce the FMU outputs bit for bit (same code, same inputs).
@@ -448,7 +525,7 @@ fn check_same(values: &Values, result: &WheelsetResult) -> Result<(), Failure> {
         let same = usize::try_from(n) == Ok(r.n_patches)
             && r.patches.iter().enumerate().all(|(k, p)| {
                 output_real(values, &format!("{side}.p{}.Fn", k + 1)) == p.fn_
-                    && output_real(values, &format!("{side}.p{}.width", k + 1)) == 2.0 * p.b
+                    && output_real(values, &format!("{side}.p{}.width", k + 1)) == p.width
             });
         if !same {
             return Err(Failure::Error(format!(

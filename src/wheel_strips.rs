@@ -1,0 +1,331 @@
+//! Non-elliptic patches of one wheel: strips on each patch's contact plane, a strip normal model
+//! per patch, and the wheel's vertical position for a prescribed load (physics.md §5.1–§5.2).
+//!
+//! For a wheel lowered by dz from its nominal height:
+//! 1. every interpenetration region of the rigid gap (at a generous trial lowering, so that each
+//!    model's patch lies inside) becomes a patch: its contact plane is the tangent plane at the
+//!    deepest contact candidate inside the region (the first-contact point, s = 0), and its
+//!    strips cover the region ([`crate::contact_search::WheelOnRail::strip_geometry`]);
+//! 2. the patch's normal approach is δ_p = dz cos γ_p − g_p (g_p its normal gap at nominal
+//!    height) and the strip model gives its pressure; the wheel's vertical force is
+//!    Σ N_p cos γ_p plus the creep forces' vertical components (held fixed during the iteration);
+//! 3. prescribed load: dz by a bracketed Illinois iteration (N(dz) is monotone and continuous; its
+//!    slope jumps where strips or patches enter, which a bracketing method tolerates);
+//! 4. **re-striping**: the strips of step 1 cover the rigid interpenetration region, wider than a
+//!    model's patch. After the first solve every contiguous run of strips in contact becomes a
+//!    patch of its own (separate interpenetration regions → separate patches) with the same
+//!    number of strips over the run plus one old strip at each end, and dz is solved again. So
+//!    the strip count is the resolution across the patch itself.
+//!
+//! Known limits: planar patches (one contact plane per patch; the strips' own angles are kept in
+//! [`StripPoints`] for the tangential problem); the vertical gap's regions decide which minima
+//! share a patch at the trial lowering.
+
+use crate::contact_search::{
+    ContactCandidates, ContactPlane, Region, StripPoints, WheelOnRail,
+};
+use crate::strips::{
+    HertzShapeTable, NormalModel, NormalParams, PatchSummary, StripGeometry, StripModel,
+    StripSolution,
+};
+use crate::wheelset::MAX_PATCHES;
+
+/// One non-elliptic patch: its plane, strips, model state and solution.
+pub struct StripPatch {
+    pub plane: ContactPlane,
+    pub geom: StripGeometry,
+    pub points: StripPoints,
+    pub sol: StripSolution,
+    model: Box<dyn StripModel + Send>,
+}
+
+impl StripPatch {
+    fn new(model: NormalModel) -> Option<Self> {
+        Some(Self {
+            plane: ContactPlane::default(),
+            geom: StripGeometry::default(),
+            points: StripPoints::default(),
+            sol: StripSolution::default(),
+            model: model.strip_model()?,
+        })
+    }
+
+    /// Normal force at wheel lowering `dz` [N] (writes the solution).
+    fn solve(&mut self, dz: f64, params: &NormalParams, table: &HertzShapeTable) -> f64 {
+        let delta = self.plane.approach(dz);
+        self.model
+            .solve(&self.geom, params, table, delta, &mut self.sol)
+    }
+
+    pub fn summary(&self) -> PatchSummary {
+        PatchSummary::of(&self.geom, &self.sol)
+    }
+
+    /// Linear interpolation of a per-strip quantity at in-plane coordinate `s`.
+    pub fn interpolate(&self, values: &[f64], s: f64) -> f64 {
+        let g = &self.geom;
+        if g.n == 1 {
+            return values[0];
+        }
+        let t = ((s - g.s[0]) / g.ds).clamp(0.0, (g.n - 1) as f64);
+        let i = (t.floor() as usize).min(g.n - 2);
+        let u = t - i as f64;
+        values[i] + (values[i + 1] - values[i]) * u
+    }
+}
+
+/// The strip patches of one wheel (two buffers: the current patches and the re-striped ones).
+pub struct StripSide {
+    patches: Vec<StripPatch>,
+    spare: Vec<StripPatch>,
+    count: usize,
+}
+
+/// Settings of the strip solve.
+#[derive(Debug, Clone, Copy)]
+pub struct StripSettings {
+    pub model: NormalModel,
+    pub strips: usize,
+    pub params: NormalParams,
+}
+
+/// Relative tolerance on the vertical force balance.
+const LOAD_TOLERANCE: f64 = 1e-9;
+/// Iteration limit of the load balance.
+const LOAD_ITERATIONS: usize = 80;
+/// Trial lowering for the strip range, as a multiple of the Hertz approach: the models' patches
+/// lie inside {f < δ} for ε < 1, and their approaches at a given load stay within ~1.5× Hertz's;
+/// a patch touching the range's end triggers a wider range.
+const RANGE_FACTOR: f64 = 2.0;
+/// Range widenings before giving up on containing a patch (each doubles the trial approach).
+const RANGE_RETRIES: usize = 4;
+
+impl StripSide {
+    /// Buffers for `model`; `None` for Hertz.
+    pub fn new(model: NormalModel) -> Option<Self> {
+        let make = || -> Option<Vec<StripPatch>> {
+            (0..MAX_PATCHES).map(|_| StripPatch::new(model)).collect()
+        };
+        Some(Self {
+            patches: make()?,
+            spare: make()?,
+            count: 0,
+        })
+    }
+
+    pub fn patches(&self) -> &[StripPatch] {
+        &self.patches[..self.count]
+    }
+
+    /// Vertical force of the rail on the wheel lowered by `dz` (upwards positive) [N].
+    fn vertical_force(
+        &mut self,
+        dz: f64,
+        params: &NormalParams,
+        table: &HertzShapeTable,
+    ) -> f64 {
+        self.patches[..self.count]
+            .iter_mut()
+            .map(|p| p.solve(dz, params, table) * p.plane.gamma.cos())
+            .sum()
+    }
+
+    /// Step 1: one patch per interpenetration region at lowering `dz_range`.
+    fn build_from_regions(
+        &mut self,
+        geometry: &WheelOnRail,
+        candidates: &ContactCandidates,
+        dz_range: f64,
+        settings: &StripSettings,
+        table: &HertzShapeTable,
+    ) {
+        let mut regions = [Region::default(); MAX_PATCHES];
+        let n = geometry.regions(dz_range, &mut regions);
+        self.count = 0;
+        for region in &regions[..n] {
+            let w_first = geometry.lateral_at(region.first as f64);
+            let w_last = geometry.lateral_at(region.last as f64);
+            // The deepest candidate inside the region is its first-contact point.
+            let w0 = candidates
+                .as_slice()
+                .iter()
+                .filter(|c| (w_first..=w_last).contains(&c.lateral))
+                .min_by(|a, b| a.gap.total_cmp(&b.gap))
+                .map_or_else(|| geometry.lateral_at(region.deepest as f64), |c| c.lateral);
+            let plane = geometry.contact_plane(w0);
+            let s_a = geometry.plane_coordinate_at(&plane, region.first as f64 - 1.0);
+            let s_b = geometry.plane_coordinate_at(&plane, region.last as f64 + 1.0);
+            let patch = &mut self.patches[self.count];
+            patch.plane = plane;
+            geometry.strip_geometry(
+                &plane,
+                s_a.min(s_b),
+                s_a.max(s_b),
+                settings.strips,
+                &mut patch.geom,
+                &mut patch.points,
+            );
+            patch.model.prepare(&patch.geom, &settings.params, table);
+            self.count += 1;
+        }
+    }
+
+    /// Step 4: every contiguous run of strips in contact becomes a patch with its own strips.
+    /// Returns false when a run touches the end of its strip range (the range was too narrow).
+    fn restrip(
+        &mut self,
+        geometry: &WheelOnRail,
+        candidates: &ContactCandidates,
+        settings: &StripSettings,
+        table: &HertzShapeTable,
+    ) -> bool {
+        let mut count = 0usize;
+        let mut contained = true;
+        for k in 0..self.count {
+            let old = &self.patches[k];
+            let n = old.geom.n;
+            // Runs from the field side (largest s) to the gauge side, as the regions come.
+            let mut i = n;
+            while i > 0 && count < MAX_PATCHES {
+                i -= 1;
+                if old.sol.half_length[i] <= 0.0 {
+                    continue;
+                }
+                let last = i;
+                while i > 0 && old.sol.half_length[i - 1] > 0.0 {
+                    i -= 1;
+                }
+                let first = i;
+                if first == 0 || last == n - 1 {
+                    contained = false;
+                }
+                // Rail points one old strip beyond the run (or the run's own end strips).
+                let w_lo = old.points.lateral[first.saturating_sub(1)];
+                let w_hi = old.points.lateral[(last + 1).min(n - 1)];
+                let (w_min, w_max) = (w_lo.min(w_hi), w_lo.max(w_hi));
+                let origin = (first..=last)
+                    .min_by(|&a, &b| old.geom.f[a].total_cmp(&old.geom.f[b]))
+                    .unwrap_or(first);
+                let w0 = candidates
+                    .as_slice()
+                    .iter()
+                    .filter(|c| (w_min..=w_max).contains(&c.lateral))
+                    .min_by(|a, b| a.gap.total_cmp(&b.gap))
+                    .map_or(old.points.lateral[origin], |c| c.lateral);
+                let plane = geometry.contact_plane(w0);
+                let s_lo = geometry.plane_coordinate_of(&plane, w_min);
+                let s_hi = geometry.plane_coordinate_of(&plane, w_max);
+                let new = &mut self.spare[count];
+                new.plane = plane;
+                geometry.strip_geometry(
+                    &plane,
+                    s_lo.min(s_hi),
+                    s_lo.max(s_hi),
+                    settings.strips,
+                    &mut new.geom,
+                    &mut new.points,
+                );
+                new.model.prepare(&new.geom, &settings.params, table);
+                count += 1;
+            }
+        }
+        std::mem::swap(&mut self.patches, &mut self.spare);
+        self.count = count;
+        contained
+    }
+
+    /// Solves the wheel: prescribed vertical force `target` [N] (`Some`, > 0) or prescribed
+    /// lowering `dz` (`None`). `touch` is the lowering at first contact, `dz_hint` a lowering
+    /// that carries the load approximately (Hertz) or the prescribed one. Returns the lowering.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve(
+        &mut self,
+        geometry: &WheelOnRail,
+        candidates: &ContactCandidates,
+        settings: &StripSettings,
+        table: &HertzShapeTable,
+        target: Option<f64>,
+        touch: f64,
+        dz_hint: f64,
+    ) -> f64 {
+        let params = settings.params;
+        let mut approach = (dz_hint - touch).max(0.0);
+        let mut dz = dz_hint;
+        for _ in 0..=RANGE_RETRIES {
+            let dz_range = match target {
+                Some(_) => touch + RANGE_FACTOR * approach,
+                None => dz_hint,
+            };
+            self.build_from_regions(geometry, candidates, dz_range, settings, table);
+            dz = match target {
+                Some(q) => self.iterate(q, touch, dz_range, &params, table),
+                None => dz_hint,
+            };
+            self.vertical_force(dz, &params, table);
+            let contained = self.restrip(geometry, candidates, settings, table);
+            if contained || target.is_none() {
+                break;
+            }
+            approach *= 2.0;
+        }
+        if let Some(q) = target {
+            let hi = touch + RANGE_FACTOR * (dz - touch).max(approach);
+            dz = self.iterate(q, touch, hi, &params, table);
+        }
+        self.vertical_force(dz, &params, table);
+        dz
+    }
+
+    /// Illinois iteration for the lowering at which the vertical force equals `q` > 0, in the
+    /// bracket [touch, hi] (hi widened until it carries the load).
+    fn iterate(
+        &mut self,
+        q: f64,
+        touch: f64,
+        hi: f64,
+        params: &NormalParams,
+        table: &HertzShapeTable,
+    ) -> f64 {
+        let (mut lo, mut f_lo) = (touch, -q);
+        let mut hi = hi.max(touch + 1e-9);
+        let mut f_hi = self.vertical_force(hi, params, table) - q;
+        // Widen until the bracket holds the load (5 cm of approach is far beyond any contact).
+        while f_hi <= 0.0 && hi - touch < 0.05 {
+            lo = hi;
+            f_lo = f_hi;
+            hi = touch + 2.0 * (hi - touch);
+            f_hi = self.vertical_force(hi, params, table) - q;
+        }
+        let mut kept = 0i8;
+        for _ in 0..LOAD_ITERATIONS {
+            let mut mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+            if !mid.is_finite() || mid <= lo.min(hi) || mid >= lo.max(hi) {
+                mid = 0.5 * (lo + hi);
+            }
+            let f_mid = self.vertical_force(mid, params, table) - q;
+            if f_mid.abs() <= LOAD_TOLERANCE * q {
+                return mid;
+            }
+            if (f_mid > 0.0) == (f_hi > 0.0) {
+                hi = mid;
+                f_hi = f_mid;
+                if kept == -1 {
+                    f_lo *= 0.5;
+                }
+                kept = -1;
+            } else {
+                lo = mid;
+                f_lo = f_mid;
+                if kept == 1 {
+                    f_hi *= 0.5;
+                }
+                kept = 1;
+            }
+        }
+        if f_lo.abs() < f_hi.abs() {
+            lo
+        } else {
+            hi
+        }
+    }
+}

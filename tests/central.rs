@@ -1,0 +1,239 @@
+//! The non-elliptic normal models on the seed study's central case against Kalker's exact theory
+//! (CONTACT v25.1; data in `../shared/reference/central/`, see its README).
+//!
+//! Set-up (as the reference): right wheel, benchmark profiles `MBench_S1002_v3.prw` on
+//! `MBench_UIC60_v3.prr` (rail already inclined 1:40, so `rail_inclination = 0`), gauge 1435 mm at
+//! 14 mm, flange-back distance 1360 mm, nominal radius 460 mm, E = 210 GPa, ν = 0.28, μ = 0.3,
+//! vertical load 78.5 kN, wheelset centred (no shift, yaw or roll), pure rolling.
+//!
+//! Compared per model: the right wheel's total contact area and its largest pressure (the
+//! reference reports one patch; a model may split it), and the strip maxima of pressure along
+//! the rail's lateral coordinate (reference `normal_dy0_strips.csv`; railcontact's `yRail` equals
+//! CONTACT's right-rail coordinate, docs/conventions.md). `cargo test --test central --
+//! --nocapture` prints the tables.
+
+use std::path::{Path, PathBuf};
+
+use railcontact::point_contact::Material;
+use railcontact::profile::{Profile, ProfileKind};
+use railcontact::strips::NormalModel;
+use railcontact::track::TrackSetup;
+use railcontact::wheelset::{
+    Creepages, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
+};
+
+const MM: f64 = 1e-3;
+const Q: f64 = 78_500.0;
+const VX: f64 = 2.0;
+
+fn shared_dir() -> PathBuf {
+    std::env::var_os("RAILCONTACT_SHARED")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"))
+}
+
+fn shared_file(relative: &str) -> PathBuf {
+    let p = shared_dir().join(relative);
+    assert!(p.is_file(), "missing shared data file {}", p.display());
+    p
+}
+
+/// Rows of a reference CSV file as (header → value) maps.
+fn read_csv(relative: &str) -> Vec<std::collections::HashMap<String, f64>> {
+    let path = shared_file(relative);
+    let text = std::fs::read_to_string(&path).expect("readable reference file");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    lines
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            header
+                .iter()
+                .zip(l.split(','))
+                .filter_map(|(h, v)| v.trim().parse::<f64>().ok().map(|x| (h.to_string(), x)))
+                .collect()
+        })
+        .collect()
+}
+
+fn wheelset(model: NormalModel) -> Wheelset {
+    let load = |file: &str, kind| {
+        let p = shared_file(&format!("profiles/{file}"));
+        Profile::load(p.to_str().unwrap(), kind, 0.0).expect("benchmark profile")
+    };
+    let wheel = load("MBench_S1002_v3.prw", ProfileKind::Wheel);
+    let rail = load("MBench_UIC60_v3.prr", ProfileKind::Rail);
+    let mut settings = WheelsetSettings::new(
+        TrackSetup {
+            rail_inclination: 0.0,
+            ..TrackSetup::default()
+        },
+        Material {
+            youngs_modulus: 210e9,
+            poisson_ratio: 0.28,
+            friction: 0.3,
+        },
+    );
+    settings.normal_model = model;
+    Wheelset::new(&wheel, &rail, settings).expect("benchmark wheelset")
+}
+
+fn solve(ws: &mut Wheelset, y: f64) -> WheelsetResult {
+    let input = WheelsetInput {
+        y,
+        yaw: 0.0,
+        roll: 0.0,
+        vertical: Vertical::Loads { left: Q, right: Q },
+        creepages: Creepages::Kinematic {
+            vx: VX,
+            vy: 0.0,
+            yaw_rate: 0.0,
+            omega: VX / 0.46,
+        },
+    };
+    let mut out = WheelsetResult::default();
+    ws.solve(&input, &mut out)
+        .unwrap_or_else(|e| panic!("y = {y}: {e}"));
+    out
+}
+
+/// Total area [m²] and largest pressure [Pa] of a wheel.
+fn area_and_pmax(side: &SideResult) -> (f64, f64) {
+    let patches = &side.patches[..side.n_patches];
+    (
+        patches.iter().map(|p| p.area).sum(),
+        patches.iter().map(|p| p.pmax).fold(0.0, f64::max),
+    )
+}
+
+struct Reference {
+    area: f64,
+    pmax: f64,
+    /// (yRail [m], strip pmax [Pa]).
+    strips: Vec<(f64, f64)>,
+}
+
+fn reference() -> Reference {
+    let summary = &read_csv("reference/central/normal_dy0_summary.csv")[0];
+    let strips = read_csv("reference/central/normal_dy0_strips.csv")
+        .iter()
+        .map(|r| (r["y_rail_approx_mm"] * MM, r["pmax_MPa"] * 1e6))
+        .collect();
+    Reference {
+        area: summary["area_mm2"] * MM * MM,
+        pmax: summary["pmax_MPa"] * 1e6,
+        strips,
+    }
+}
+
+/// A model's strip maxima interpolated at the reference strips' yRail (zero outside its patch);
+/// returns the RMS difference relative to the reference's largest pressure.
+fn strip_pmax_error(ws: &Wheelset, r: &Reference) -> f64 {
+    let mut points: Vec<(f64, f64)> = ws
+        .strip_patches(true)
+        .iter()
+        .flat_map(|p| (0..p.geom.n).map(move |i| (p.points.y_rail[i], p.sol.pmax[i])))
+        .collect();
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let at = |y: f64| -> f64 {
+        let k = points.partition_point(|p| p.0 < y);
+        if k == 0 || k == points.len() {
+            return 0.0;
+        }
+        let (a, b) = (points[k - 1], points[k]);
+        a.1 + (b.1 - a.1) * (y - a.0) / (b.0 - a.0)
+    };
+    let sum: f64 = r.strips.iter().map(|(y, p)| (at(*y) - p).powi(2)).sum();
+    (sum / r.strips.len() as f64).sqrt() / r.pmax
+}
+
+#[test]
+fn central_case_against_the_exact_theory() {
+    let r = reference();
+    println!(
+        "reference: area {:.1} mm², pmax {:.1} MPa",
+        r.area / (MM * MM),
+        r.pmax / 1e6
+    );
+    println!("model           patches  area mm²  (err)    pmax MPa  (err)   strip-pmax RMS");
+    let mut areas = std::collections::HashMap::new();
+    for model in NormalModel::ALL {
+        let mut ws = wheelset(model);
+        let out = solve(&mut ws, 0.0);
+        let (area, pmax) = area_and_pmax(&out.right);
+        let fz: f64 = -out.right.force[2];
+        let rms = if model == NormalModel::Hertz {
+            f64::NAN
+        } else {
+            strip_pmax_error(&ws, &r)
+        };
+        println!(
+            "{:15} {:7} {:9.1} ({:+5.1} %) {:8.1} ({:+5.1} %)  {:.3}   Fz {:.0} N",
+            model.name(),
+            out.right.n_patches,
+            area / (MM * MM),
+            100.0 * (area / r.area - 1.0),
+            pmax / 1e6,
+            100.0 * (pmax / r.pmax - 1.0),
+            rms,
+            fz
+        );
+        // The vertical load balance holds for every model (1e−6: the iteration's tolerance is
+        // 1e−9 of the load; creep forces are zero-ish in pure rolling).
+        assert!(((fz - Q) / Q).abs() < 1e-6, "{}: Fz = {fz}", model.name());
+        areas.insert(model, area);
+        if matches!(model, NormalModel::StripesAB | NormalModel::Analyn) {
+            // The acceptance: area within ±10 %, pmax within ±15 % of the exact theory.
+            assert!(
+                (area / r.area - 1.0).abs() < 0.10,
+                "{}: area {area}",
+                model.name()
+            );
+            assert!(
+                (pmax / r.pmax - 1.0).abs() < 0.15,
+                "{}: pmax {pmax}",
+                model.name()
+            );
+        }
+    }
+    // The seed: Linder's patch is larger than Kik–Piotrowski's and STRIPES's.
+    for other in [
+        NormalModel::KikPiotrowski,
+        NormalModel::StripesB,
+        NormalModel::StripesAB,
+    ] {
+        assert!(
+            areas[&NormalModel::Linder] > areas[&other],
+            "Linder's area {} is not above {}'s {}",
+            areas[&NormalModel::Linder],
+            other.name(),
+            areas[&other]
+        );
+    }
+}
+
+#[test]
+fn every_model_is_finite_over_lateral_shifts() {
+    // The acceptance: finite, positive area and pmax on shifts −1…+6 mm at 78.5 kN.
+    for model in NormalModel::ALL {
+        let mut ws = wheelset(model);
+        let mut y = -1.0;
+        while y <= 6.0 + 1e-9 {
+            let out = solve(&mut ws, y * MM);
+            for side in [&out.left, &out.right] {
+                let (area, pmax) = area_and_pmax(side);
+                assert!(
+                    area.is_finite() && area > 0.0 && pmax.is_finite() && pmax > 0.0,
+                    "{} at y = {y} mm: area {area}, pmax {pmax}",
+                    model.name()
+                );
+                for p in &side.patches[..side.n_patches] {
+                    for v in [p.fn_, p.fx, p.fy, p.mz, p.length, p.width, p.y_rail] {
+                        assert!(v.is_finite(), "{} at y = {y} mm: {p:?}", model.name());
+                    }
+                }
+            }
+            y += 0.5;
+        }
+    }
+}
