@@ -23,7 +23,7 @@
 //! to the table's 1e−7). Since x_l² = ε_x δ_loc/A, the peak equals the A-based local Hertz peak of
 //! an ellipse with x-semi-axis x_l (physics.md §2.4), the same rule as STRIPES' S5.
 //!
-//! # Choices ([U] items of §5.8)
+//! # Choices (\[U\] items of §5.8)
 //!
 //! * Curvatures: A_i and B_i are taken from the strip geometry as given (its builder's estimate);
 //!   the original paper's curvature estimation is not reproduced. No iteration on δ_loc: A1 is
@@ -123,7 +123,7 @@ impl StripModel for Analyn {
         self.n = n;
         for i in 0..n {
             let raw_b = geom.curv_b[i];
-            // `!(b > b_min)` also floors a non-finite B.
+            // Floor B < B_min (A1, §5.10); a non-finite B (input error) goes to the floor too.
             let b = if raw_b > b_min && raw_b.is_finite() {
                 raw_b
             } else {
@@ -173,5 +173,279 @@ impl StripModel for Analyn {
             }
         }
         out.normal_force()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hertz::{hertz_from_approach, HertzPatch};
+    use crate::strips::PatchSummary;
+    use std::sync::OnceLock;
+
+    /// Per-strip tolerance against exact Hertz, normalised by a² or p0: the table's 1e−7
+    /// relative accuracy of ε_x and P (strips.rs), amplified at most a few times by
+    /// δ_loc = δ − f/ε_y (two terms of size ≤ δ).
+    const TABLE_TOL: f64 = 1e-6;
+    /// Lateral curvature of the Hertz cases [1/m].
+    const CURV_B: f64 = 1.5;
+    /// Approach of the Hertz cases [m].
+    const DELTA: f64 = 50e-6;
+
+    fn table() -> &'static HertzShapeTable {
+        static TABLE: OnceLock<HertzShapeTable> = OnceLock::new();
+        TABLE.get_or_init(HertzShapeTable::new)
+    }
+
+    fn params() -> NormalParams {
+        NormalParams::default()
+    }
+
+    fn run(geom: &StripGeometry, params: &NormalParams, delta: f64) -> (StripSolution, f64) {
+        let mut model = Analyn::default();
+        let mut out = StripSolution::default();
+        model.prepare(geom, params, table());
+        let n = model.solve(geom, params, table(), delta, &mut out);
+        (out, n)
+    }
+
+    fn hertz(ratio: f64) -> (f64, HertzPatch) {
+        let a = ratio * CURV_B;
+        (
+            a,
+            hertz_from_approach(a, CURV_B, DELTA, params().e_star).unwrap(),
+        )
+    }
+
+    fn no_nan(sol: &StripSolution, n_total: f64) {
+        assert!(n_total.is_finite() && n_total >= 0.0, "N = {n_total}");
+        for i in 0..sol.n {
+            for v in [sol.half_length[i], sol.pmax[i], sol.force[i]] {
+                assert!(v.is_finite() && v >= 0.0, "strip {i}: {v}");
+            }
+        }
+    }
+
+    #[test]
+    fn hertz_gap_gives_hertz_pressure_strip_by_strip() {
+        // x_l² = a²(1 − s²/b²), p_max = p0 √(1 − s²/b²) at every strip, for any alignment.
+        for ratio in [1.0, 1.0 / 3.0, 0.1, 3.0, 0.02, 10.0] {
+            let (curv_a, h) = hertz(ratio);
+            for (lo, hi, n) in [
+                (-1.0, 1.0, 199),
+                (-1.3, 1.17, 200),
+                (0.2, 1.5, 17),
+                (-0.4, 0.3, 1),
+            ] {
+                let geom = StripGeometry::quadratic(curv_a, CURV_B, lo * h.b, hi * h.b, n);
+                let (sol, _) = run(&geom, &params(), DELTA);
+                let mut err: f64 = 0.0;
+                for i in 0..n {
+                    let q = 1.0 - (geom.s[i] / h.b).powi(2);
+                    assert_eq!(sol.half_length[i] > 0.0, q > 0.0, "strip {i}");
+                    let q = q.max(0.0);
+                    err = err.max((sol.half_length[i].powi(2) - h.a * h.a * q).abs() / (h.a * h.a));
+                    err = err.max((sol.pmax[i] - h.p0 * q.sqrt()).abs() / h.p0);
+                }
+                if lo == -1.0 {
+                    eprintln!("A/B = {ratio:.4}: per-strip error {err:.2e}");
+                }
+                assert!(err < TABLE_TOL, "A/B = {ratio}, [{lo}, {hi}]: {err}");
+            }
+            // 199 strips on [−b, b]: exact a and p0 at the centre strip; V1's midpoint sum is
+            // N_H (1 + Δs²/(8b²)) exactly.
+            let geom = StripGeometry::quadratic(curv_a, CURV_B, -h.b, h.b, 199);
+            let (sol, n) = run(&geom, &params(), DELTA);
+            let sum = PatchSummary::of(&geom, &sol);
+            let midpoint = 1.0 + (geom.ds / h.b).powi(2) / 8.0;
+            assert!((sum.length / (2.0 * h.a) - 1.0).abs() < TABLE_TOL);
+            assert!((sum.pmax / h.p0 - 1.0).abs() < TABLE_TOL);
+            assert!((n / (h.normal_force * midpoint) - 1.0).abs() < TABLE_TOL);
+        }
+    }
+
+    #[test]
+    fn normal_force_tends_to_hertz_with_strip_count() {
+        // Odd counts on [−b, b]: |N/N_H − 1| = Δs²/(8b²) = 1/(2 n²) → 0.
+        let (curv_a, h) = hertz(0.25);
+        let mut last = f64::INFINITY;
+        for n in [25, 51, 101, 199] {
+            let geom = StripGeometry::quadratic(curv_a, CURV_B, -h.b, h.b, n);
+            let err = (run(&geom, &params(), DELTA).1 / h.normal_force - 1.0).abs();
+            let expect = 0.5 / (n * n) as f64;
+            eprintln!("{n} strips: |N/N_H − 1| = {err:.3e} (Δs²/8b² = {expect:.3e})");
+            assert!((err - expect).abs() < TABLE_TOL);
+            assert!(err < 0.3 * last);
+            last = err;
+        }
+        // Strip set not aligned with the patch: |N/N_H − 1| ≤ (Δs/b)²/2 (interior Δs²/(6b),
+        // each cut edge ≤ Δs²/(4b), of 4b/3).
+        for n in [25, 50, 100, MAX_STRIPS] {
+            let geom = StripGeometry::quadratic(curv_a, CURV_B, -1.3 * h.b, 1.17 * h.b, n);
+            let err = (run(&geom, &params(), DELTA).1 / h.normal_force - 1.0).abs();
+            let step = geom.ds / h.b;
+            eprintln!("{n} strips, unaligned: |N/N_H − 1| = {err:.2e}");
+            assert!(err <= 0.5 * step * step);
+        }
+    }
+
+    #[test]
+    fn mirrored_gap_gives_mirrored_pressure() {
+        let w = 1.5 * hertz(1.0).1.b;
+        let gap = move |s: f64| {
+            (
+                CURV_B * s * s * (1.0 - 0.5 * s / w),
+                0.8 * (1.0 + 0.3 * s / w),
+                CURV_B * (1.0 - 1.5 * s / w),
+            )
+        };
+        let n = 77;
+        let geom = StripGeometry::from_fn(-w, 0.7 * w, n, gap);
+        let mirror = StripGeometry::from_fn(-0.7 * w, w, n, |s| gap(-s));
+        let (sol, n1) = run(&geom, &params(), 2.0 * DELTA);
+        let (sol_m, n2) = run(&mirror, &params(), 2.0 * DELTA);
+        let x_max = sol.half_length.iter().copied().fold(0.0, f64::max);
+        let p_max = sol.pmax.iter().copied().fold(0.0, f64::max);
+        assert!(x_max > 0.0);
+        for i in 0..n {
+            let j = n - 1 - i;
+            assert!((sol.half_length[i] - sol_m.half_length[j]).abs() <= 1e-9 * x_max);
+            assert!((sol.pmax[i] - sol_m.pmax[j]).abs() <= 1e-9 * p_max);
+        }
+        assert!((n1 - n2).abs() <= 1e-9 * n1);
+    }
+
+    #[test]
+    fn awkward_inputs_give_no_nan_and_no_panic() {
+        let w = 0.01;
+        let two_min = move |s: f64| {
+            let (k, s2) = (2e4, 0.6 * w);
+            (
+                k * s * s * (s - s2).powi(2),
+                1.0,
+                k * (6.0 * s * s - 6.0 * s * s2 + s2 * s2),
+            )
+        };
+        let mut odd = StripGeometry::quadratic(1.0, 2.0, -w, w, 30);
+        odd.curv_b[3] = f64::NAN;
+        odd.curv_b[4] = f64::NEG_INFINITY;
+        odd.f[5] = f64::NAN;
+        odd.curv_a[6] = f64::INFINITY;
+        let cases = [
+            (
+                "conformal",
+                StripGeometry::from_fn(-w, w, 40, |_| (0.0, 1.0, 0.0)),
+            ),
+            (
+                "concave",
+                StripGeometry::from_fn(-w, w, 40, |s| (-s * s, 1.0, -1.0)),
+            ),
+            (
+                "two minima",
+                StripGeometry::from_fn(-0.5 * w, 1.2 * w, 120, two_min),
+            ),
+            (
+                "A ≤ 0",
+                StripGeometry::from_fn(-w, w, 40, |s| (s * s, s * 1e3, 1.0)),
+            ),
+            ("non-finite", odd),
+            (
+                "extreme ratios",
+                StripGeometry::from_fn(-w, w, 40, |s| (s * s, 1e-9, 1e9)),
+            ),
+            ("one strip", StripGeometry::quadratic(1.0, 2.0, -w, w, 1)),
+            ("no strip", StripGeometry::default()),
+        ];
+        for (name, geom) in &cases {
+            for delta in [-1e-5, 0.0, 1e-12, 5e-5, 1e-2, 1e3, f64::NAN, f64::INFINITY] {
+                for p in [
+                    params(),
+                    NormalParams {
+                        b_min: f64::NAN,
+                        ..params()
+                    },
+                ] {
+                    let (sol, n) = run(geom, &p, delta);
+                    no_nan(&sol, n);
+                    if delta.is_nan() || delta <= 0.0 {
+                        assert_eq!(n, 0.0, "{name}");
+                    }
+                }
+            }
+        }
+        // Two minima: ANALYN's strips are independent, so both regions carry load.
+        let (_, geom) = &cases[2];
+        let (sol, _) = run(geom, &params(), 1e-6);
+        let s2 = 0.6 * w;
+        let near = |target: f64| {
+            (0..geom.n).any(|i| (geom.s[i] - target).abs() < 0.1 * w && sol.half_length[i] > 0.0)
+        };
+        assert!(near(0.0) && near(s2));
+        let hump_free =
+            (0..geom.n).any(|i| (geom.s[i] - 0.5 * s2).abs() < 0.02 * w && sol.force[i] == 0.0);
+        assert!(hump_free);
+        // B ≤ 0 is floored to B_min.
+        let (_, conformal) = &cases[0];
+        let mut model = Analyn::default();
+        model.prepare(conformal, &params(), table());
+        assert!(model.curv_b().iter().all(|&b| b == params().b_min));
+    }
+
+    /// Largest step of `values` between neighbours.
+    fn max_jump(values: &[f64]) -> f64 {
+        values
+            .windows(2)
+            .map(|w| (w[1] - w[0]).abs())
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn normal_force_is_continuous_while_b_crosses_zero() {
+        // B = B0(1 − s/s_t), f = B0 s²(1 − s/(3 s_t)), s_t from 3w to 0.4w: the zero of B moves
+        // into the patch. Continuity: the largest jump between neighbours shrinks ~10× with a
+        // 10× finer sweep (a discontinuity would keep it); N(δ) non-decreasing.
+        let w = 1.5 * hertz(1.0 / 1.5).1.b;
+        let geometry = |s_t: f64| {
+            StripGeometry::from_fn(-w, w, 80, |s| {
+                (
+                    CURV_B * s * s * (1.0 - s / (3.0 * s_t)),
+                    1.0,
+                    CURV_B * (1.0 - s / s_t),
+                )
+            })
+        };
+        let family = |steps: usize| -> Vec<f64> {
+            (0..=steps)
+                .map(|k| {
+                    run(
+                        &geometry(w * (3.0 - 2.6 * k as f64 / steps as f64)),
+                        &params(),
+                        DELTA,
+                    )
+                    .1
+                })
+                .collect()
+        };
+        let (coarse, fine) = (family(40), family(400));
+        let (j_coarse, j_fine) = (max_jump(&coarse), max_jump(&fine));
+        let geom = geometry(0.4 * w);
+        let in_delta = |steps: usize| -> Vec<f64> {
+            (0..=steps)
+                .map(|k| run(&geom, &params(), 4.0 * DELTA * k as f64 / steps as f64).1)
+                .collect()
+        };
+        let (d_coarse, d_fine) = (in_delta(40), in_delta(400));
+        let (k_coarse, k_fine) = (max_jump(&d_coarse), max_jump(&d_fine));
+        eprintln!(
+            "sweep: N {:.0}…{:.0} N, max jump {j_coarse:.1} → {j_fine:.2} N; \
+             N(δ) max jump {k_coarse:.1} → {k_fine:.2} N",
+            fine[0], fine[400]
+        );
+        assert!(fine.iter().all(|n| n.is_finite() && *n > 0.0));
+        assert!(j_fine < 0.2 * j_coarse);
+        assert!(d_fine.windows(2).all(|w| w[1] >= w[0]));
+        assert!(k_fine < 0.2 * k_coarse);
+        let (sol, _) = run(&geom, &params(), 4.0 * DELTA);
+        assert!((0..geom.n).any(|i| geom.curv_b[i] < 0.0 && sol.half_length[i] > 0.0));
     }
 }

@@ -239,15 +239,19 @@ pub struct ContactPlane {
     pub z0: f64,
     /// Inclination γ of the plane in the wheelset frame [rad], positive rising towards the flange.
     pub gamma: f64,
-    /// Normal gap at the origin with the wheel at its nominal height [m]: lowering the wheel by
-    /// dz gives the normal approach δ = dz cos γ − gap_n.
+    /// Lowering of the wheel from its nominal height at which the geometry is taken: the
+    /// vertical gap at the first-contact point, so that the surfaces just touch there [m]. (At
+    /// the nominal height a shifted wheelset's wheel may overlap the rail by millimetres, where a
+    /// normal projection of the two surfaces is meaningless.)
+    pub lift: f64,
+    /// Normal gap at the origin with the wheel lowered by `lift` [m] (zero up to round-off).
     pub gap_n: f64,
 }
 
 impl ContactPlane {
     /// Normal approach of the patch's first-contact point when the wheel is lowered by `dz` [m].
     pub fn approach(&self, dz: f64) -> f64 {
-        dz * self.gamma.cos() - self.gap_n
+        (dz - self.lift) * self.gamma.cos() - self.gap_n
     }
 }
 
@@ -601,10 +605,11 @@ impl WheelOnRail {
         self.scan_lo + self.scan_dw * at
     }
 
-    /// The contact plane at lateral `w0` (wheelset frame) for the pose of the last search:
+    /// The contact plane at lateral `w0` (wheelset frame) for the pose of the last search, with
+    /// the wheel lowered by `lift` (the vertical gap at `w0`, so that the surfaces touch there):
     /// origin on the rail, inclination from the rail's slope there (at a gap minimum the rail and
     /// wheel slopes agree).
-    pub fn contact_plane(&self, w0: f64) -> ContactPlane {
+    pub fn contact_plane(&self, w0: f64, lift: f64) -> ContactPlane {
         let p = &self.pose;
         // Central difference over ±1 µm: truncation error ~1e−12 z''', far below the profiles'
         // own accuracy.
@@ -615,9 +620,10 @@ impl WheelOnRail {
             w0,
             z0,
             gamma: -slope.atan(),
+            lift,
             gap_n: 0.0,
         };
-        let wheel = project_on_plane(&plane, 0.0, |w| (self.wheel_at(w, p).0, ()));
+        let wheel = project_on_plane(&plane, 0.0, |w| (self.wheel_at(w, p).0 + lift, ()));
         plane.gap_n = -normal_coordinate(&plane, wheel.w, wheel.z);
         plane
     }
@@ -640,7 +646,7 @@ impl WheelOnRail {
         let rail = project_on_plane(plane, s, |w| self.rail_at(w, p));
         let wheel = project_on_plane(plane, s, |w| {
             let (z, x, y_wheel) = self.wheel_at(w, p);
-            (z, (x, y_wheel))
+            (z + plane.lift, (x, y_wheel))
         });
         PlaneGap {
             f: normal_coordinate(plane, rail.w, rail.z)

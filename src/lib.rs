@@ -11,18 +11,18 @@
 
 pub mod error;
 
+pub mod analyn;
 pub mod contact_search;
 pub mod elliptic;
 pub mod fastsim;
 pub mod hertz;
 pub mod kalker;
+pub mod kik_piotrowski;
+pub mod linder;
 pub mod point_contact;
 pub mod profile;
-pub mod strips;
-pub mod linder;
-pub mod kik_piotrowski;
 pub mod stripes;
-pub mod analyn;
+pub mod strips;
 pub mod track;
 pub mod wheel_strips;
 pub mod wheelset;

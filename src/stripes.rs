@@ -8,7 +8,7 @@
 //! paper's equations were at hand: what follows is the **reconstruction of physics.md §5.6 (S0–S6)
 //! and §5.7**, with the labels used there.
 //!
-//! # Approach 3, [`StripesB`] (physics.md §5.6, [R])
+//! # Approach 3, [`StripesB`] (physics.md §5.6, \[R\])
 //!
 //! On the strips of [`StripGeometry`] (centres s_i, width Δs, first-contact point s = 0):
 //!
@@ -27,7 +27,7 @@
 //! x_l² = (εδ/A)(1 − s²/b²) with b² = εδ/B* = (1 − ε)δ/B = ε_y δ/B, which is the Hertz half-width
 //! (H6); with S5 the strip pressure is p0_H √(1 − s²/b² − x²/a²), the Hertz pressure.
 //!
-//! # Approach 4, [`StripesAB`] (physics.md §5.7, [U]: reconstructed, experimental)
+//! # Approach 4, [`StripesAB`] (physics.md §5.7, \[U\]: reconstructed, experimental)
 //!
 //! The brief's template with its suggested cube-root split ε̃(A/B) = 1/(1 + (A/B)^{1/3})
 //! ([`approximate_shape_factor`]):
@@ -47,7 +47,7 @@
 //!
 //! # Choices where the brief leaves the reading open
 //!
-//! * **S0 filter [U]:** a least-squares parabola in s, centred on each strip, over the strips
+//! * **S0 filter \[U\]:** a least-squares parabola in s, centred on each strip, over the strips
 //!   |j − i| ≤ m, m = ⌊w n / 2⌋ with w = `params.b_smoothing` (the window spans the fraction w of
 //!   the strip set's width nΔs; w = 0 or m = 0: no smoothing). Near the ends the window is
 //!   truncated and the fit is one-sided. The parabola (not a moving average) because it
@@ -56,7 +56,7 @@
 //!   ends. Smoothing acts on the raw B (non-finite values first replaced by B_min), the floor after
 //!   it, as S0 orders it. The window is a fraction of the strip set, not of the δ-dependent contact
 //!   width: `prepare` is δ-independent.
-//! * **S3 [U]: double integration, not f·B*/B.** Both are exact on a Hertz gap. Integration is
+//! * **S3 \[U\]: double integration, not f·B*/B.** Both are exact on a Hertz gap. Integration is
 //!   chosen because the seed says that smoothing B smooths the patch boundary, which holds only if
 //!   the boundary is built from the (smoothed) B; with f·B*/B the smoothing would only enter
 //!   through ε. Discretisation: 2B* is taken piecewise constant on the strips (B*_i on
@@ -67,20 +67,21 @@
 //!   f*_i is O(Δs²). Consequence: the corrected gap is convex, so a second minimum of f inside the
 //!   strip set is not found: a gap with disjoint contact regions must be cut into separate patches
 //!   (physics.md §5.1) before STRIPES sees it.
-//! * **S5 [R]: local peak from the strip length.** The strip carries the Hertz ellipse of
+//! * **S5 \[R\]: local peak from the strip length.** The strip carries the Hertz ellipse of
 //!   (A_i, B_i) whose x-semi-axis is a = x_l,i. That ellipse has the approach δ_e = A_i a²/ε_i
 //!   (H6) and the peak p0 = E* √(δ_e (A_i + B_i)) P(A_i/B_i) (the table's coefficient), so
 //!   p0_i = E* P_i x_l,i √(A_i (A_i + B_i)/ε_i) — the A-based form of physics.md §2.4
 //!   (circle: 4E*A a/π). Using B* here would break exactness (brief).
-//! * **A4 pressure [U]:** the same S5 rule with the shifted curvatures (exact peak on a Hertz gap).
+//! * **A4 pressure \[U\]:** the same S5 rule with the shifted curvatures (exact peak on a Hertz
+//!   gap).
 //! * **B_min:** `params.b_min` (default 0.1 1/m, CONTACT's 1e−4 1/mm); a non-positive or
 //!   non-finite value falls back to the default.
 //!
 //! # Known limits
 //!
 //! * The corrected gap f* uses only B (S3): where the real surfaces diverge (B < 0 floored to
-//!   B_min) the Approach-3 patch extends far along s, up to the end of the strip set; Approach 4's
-//!   constant shift lets one strongly concave strip anywhere in the set lift every B.
+//!   B_min) the Approach-3 patch can extend far along s, possibly to the end of the strip set;
+//!   Approach 4's constant shift lets one strongly concave strip anywhere in the set lift every B.
 //! * Approach 4's ε̃ is the brief's candidate, not the paper's formula: its width error grows for
 //!   A/B → 0 (b̃/b_H = 0.914 at A/B = 0.02) — replace when Ayasse & Chollet 2005 is at hand.
 //! * Strips with A_i ≤ 0 or non-finite A_i are out of contact (A > 0 is a precondition of the
@@ -91,8 +92,7 @@
 //! panic, and no NaN for any finite geometry and any δ (δ ≤ 0 or NaN: no contact).
 
 use crate::strips::{
-    HertzShape, HertzShapeTable, NormalParams, StripGeometry, StripModel, StripSolution,
-    MAX_STRIPS,
+    HertzShape, HertzShapeTable, NormalParams, StripGeometry, StripModel, StripSolution, MAX_STRIPS,
 };
 
 /// Approximate Hertz split ε̃(A/B) = 1/(1 + (A/B)^{1/3}) of the Approach-4 reconstruction
@@ -135,7 +135,7 @@ fn strip_count(geom: &StripGeometry) -> usize {
 /// Half window m (in strips) of the S0 filter: the window |j − i| ≤ m spans the fraction
 /// `fraction` of the `n` strips (m = ⌊fraction·n/2⌋; 0 = no smoothing).
 fn smoothing_half_window(fraction: f64, n: usize) -> usize {
-    if !(fraction > 0.0) {
+    if fraction.is_nan() || fraction <= 0.0 {
         return 0;
     }
     let m = (0.5 * fraction * n as f64).floor();
@@ -191,7 +191,7 @@ fn parabola_value_at_centre(window: &[f64], centre: usize, scale: usize) -> f64 
     let col1 = [m[1], m[2], m[3]];
     let col2 = [m[2], m[3], m[4]];
     let det = det3([m[0], m[1], m[2]], col1, col2);
-    if !(det.abs() > f64::EPSILON * m[0] * m[2] * m[4]) {
+    if det.is_nan() || det.abs() <= f64::EPSILON * m[0] * m[2] * m[4] {
         return window[centre];
     }
     det3(r, col1, col2) / det
@@ -377,8 +377,8 @@ impl StripModel for StripesB {
         let half_window = smoothing_half_window(params.b_smoothing, n);
         smooth_least_squares_parabola(&self.curv_b_raw[..n], half_window, &mut st.curv_b[..n]);
         for b in &mut st.curv_b[..n] {
-            // `!(b > b_min)` also maps a NaN (overflowing fit) to the floor.
-            if !(*b > b_min) {
+            // A NaN (overflowing fit) goes to the floor too.
+            if b.is_nan() || *b <= b_min {
                 *b = b_min;
             }
         }
@@ -533,7 +533,10 @@ mod tests {
 
     fn hertz(ratio: f64) -> (f64, HertzPatch) {
         let a = ratio * CURV_B;
-        (a, hertz_from_approach(a, CURV_B, DELTA, params().e_star).unwrap())
+        (
+            a,
+            hertz_from_approach(a, CURV_B, DELTA, params().e_star).unwrap(),
+        )
     }
 
     /// Largest deviation of the strips from the Hertz-like pressure x_l² = a²(1 − s²/w²),
@@ -543,7 +546,12 @@ mod tests {
         let mut err: f64 = 0.0;
         for i in 0..geom.n {
             let q = 1.0 - (geom.s[i] / w).powi(2);
-            assert_eq!(sol.half_length[i] > 0.0, q > 0.0, "strip {i}, s = {}", geom.s[i]);
+            assert_eq!(
+                sol.half_length[i] > 0.0,
+                q > 0.0,
+                "strip {i}, s = {}",
+                geom.s[i]
+            );
             let q = q.max(0.0);
             err = err.max((sol.half_length[i].powi(2) - a * a * q).abs() / (a * a));
             err = err.max((sol.pmax[i] - p0 * q.sqrt()).abs() / p0);
@@ -587,5 +595,434 @@ mod tests {
             assert!((n / (h.normal_force * midpoint) - 1.0).abs() < TABLE_TOL);
             assert!((n / h.normal_force - 1.0).abs() < 1.3e-5);
         }
+    }
+
+    #[test]
+    fn stripes_b_hertz_exact_wherever_the_first_contact_point_lies() {
+        // Off-centre origin (inside a strip at an arbitrary offset) and an origin outside the
+        // strip set: S3's piecewise-constant integration from s = 0 keeps f* = B* s².
+        let (curv_a, h) = hertz(0.1);
+        for (lo, hi, n) in [
+            (-1.3, 1.17, 200),
+            (-0.83, 1.4, 37),
+            (0.2, 1.5, 60),
+            (-1.5, -0.1, 1),
+        ] {
+            let geom = StripGeometry::quadratic(curv_a, CURV_B, lo * h.b, hi * h.b, n);
+            let mut model = StripesB::default();
+            let (sol, _) = run(&mut model, &geom, &params(), DELTA);
+            let err = profile_error(&geom, &sol, h.a, h.b, h.p0);
+            eprintln!("range [{lo}, {hi}]·b, {n} strips: profile {err:.2e}");
+            assert!(err < TABLE_TOL);
+            let b_star = CURV_B * model.shape_factor()[0] / (1.0 - model.shape_factor()[0]);
+            for (i, f) in model.corrected_gap().iter().enumerate() {
+                let expect = b_star * geom.s[i] * geom.s[i];
+                assert!(
+                    (f - expect).abs() <= 1e-12 * b_star * h.b * h.b,
+                    "strip {i}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn stripes_ab_length_exact_width_within_2_1_percent() {
+        // Hertz gap: x_l² = a_H²(1 − s²/b̃²), b̃² = (1 − ε̃)δ/B, p0_i = p0_H √(1 − s²/b̃²).
+        let mut worst: f64 = 0.0;
+        let mut u: f64 = 0.1_f64.ln();
+        while u <= 10.0_f64.ln() + 1e-9 {
+            let ratio = u.exp();
+            let (curv_a, h) = hertz(ratio);
+            let eps_approx = approximate_shape_factor(curv_a, CURV_B);
+            let width = ((1.0 - eps_approx) * DELTA / CURV_B).sqrt();
+            let geom = StripGeometry::quadratic(curv_a, CURV_B, -1.1 * h.b, 1.1 * h.b, 199);
+            let (sol, n) = run(&mut StripesAB::default(), &geom, &params(), DELTA);
+            let sum = PatchSummary::of(&geom, &sol);
+            assert!(profile_error(&geom, &sol, h.a, width, h.p0) < TABLE_TOL);
+            assert!((sum.length / (2.0 * h.a) - 1.0).abs() < TABLE_TOL);
+            assert!((sum.pmax / h.p0 - 1.0).abs() < TABLE_TOL);
+            // N of the strip sum vs (2/3)π a b̃ p0: the midpoint-sum error (Δs/b)² ≈ 1e−4.
+            let n_model = 2.0 / 3.0 * std::f64::consts::PI * h.a * width * h.p0;
+            assert!((n / n_model - 1.0).abs() < 2e-4, "{}", n / n_model - 1.0);
+            worst = worst.max((width / h.b - 1.0).abs());
+            u += 0.05;
+        }
+        eprintln!("A4 worst |b̃/b_H − 1| on 0.1 ≤ A/B ≤ 10: {worst:.4}");
+        assert!(worst < 0.021);
+        for (ratio, expect) in [(0.1, 0.9792), (10.0, 1.0101), (0.02, 0.914)] {
+            let (curv_a, h) = hertz(ratio);
+            let eps_approx = approximate_shape_factor(curv_a, CURV_B);
+            let width = ((1.0 - eps_approx) * DELTA / CURV_B).sqrt();
+            eprintln!("A/B = {ratio}: b̃/b_H = {:.4}", width / h.b);
+            assert!((width / h.b - expect).abs() < 1e-3);
+        }
+        // Exact at A/B = 1.
+        let (curv_a, h) = hertz(1.0);
+        let geom = StripGeometry::quadratic(curv_a, CURV_B, -h.b, h.b, 199);
+        let (sol, _) = run(&mut StripesAB::default(), &geom, &params(), DELTA);
+        assert!(profile_error(&geom, &sol, h.a, h.b, h.p0) < TABLE_TOL);
+    }
+
+    #[test]
+    fn stripes_ab_shift_rule_and_no_smoothing() {
+        // min B = −2 → every B shifted by B_min + 2; a positive minimum above B_min: no shift.
+        let p = params();
+        let geom = StripGeometry::from_fn(-0.01, 0.01, 50, |s| (s * s, 1.0, 1.0 - 3e4 * s * s));
+        let mut model = StripesAB::default();
+        model.prepare(&geom, &p, table());
+        let b_low = (0..geom.n)
+            .map(|i| geom.curv_b[i])
+            .fold(f64::INFINITY, f64::min);
+        assert!((model.curv_b_shift() - (p.b_min - b_low)).abs() < 1e-12);
+        for i in 0..geom.n {
+            assert!((model.curv_b()[i] - (geom.curv_b[i] + p.b_min - b_low)).abs() < 1e-12);
+        }
+        let lowest = model.curv_b().iter().copied().fold(f64::INFINITY, f64::min);
+        assert!((lowest - p.b_min).abs() < 1e-12);
+        let geom = StripGeometry::quadratic(1.0, 2.0, -0.01, 0.01, 50);
+        model.prepare(&geom, &p, table());
+        assert_eq!(model.curv_b_shift(), 0.0);
+        // The smoothing parameter has no effect.
+        let spiky = spike_geometry();
+        let (a, _) = run(&mut StripesAB::default(), &spiky, &p, DELTA);
+        let rough = NormalParams {
+            b_smoothing: 0.0,
+            ..p
+        };
+        let (b, _) = run(&mut StripesAB::default(), &spiky, &rough, DELTA);
+        assert_eq!(a.pmax, b.pmax);
+        assert_eq!(a.half_length, b.half_length);
+    }
+
+    /// f(s) = ∫₀ˢ (s − t) 2B(t) dt by composite Simpson (tests: a gap consistent with B).
+    fn gap_of(curv_b: impl Fn(f64) -> f64, s: f64) -> f64 {
+        const PANELS: usize = 2000;
+        let h = s / PANELS as f64;
+        let g = |t: f64| (s - t) * 2.0 * curv_b(t);
+        let mut sum = g(0.0) + g(s);
+        for k in 1..PANELS {
+            sum += if k % 2 == 1 { 4.0 } else { 2.0 } * g(k as f64 * h);
+        }
+        sum * h / 3.0
+    }
+
+    /// Half-width of the spike-test patch's Hertz part [m].
+    fn spike_half_width() -> f64 {
+        hertz(1.0).1.b
+    }
+
+    /// A Hertz gap (A = B = 1.5 1/m) with a narrow lateral-curvature spike (×20, Gaussian of
+    /// 1.5 strip widths) at 0.4 b inside the patch; 120 strips on [−1.5 b, 1.5 b].
+    fn spike_geometry() -> StripGeometry {
+        let b = spike_half_width();
+        let n = 120;
+        let sigma = 1.5 * 3.0 * b / n as f64;
+        let curv_b = move |s: f64| CURV_B * (1.0 + 20.0 * (-((s - 0.4 * b) / sigma).powi(2)).exp());
+        StripGeometry::from_fn(-1.5 * b, 1.5 * b, n, |s| {
+            (gap_of(curv_b, s), CURV_B, curv_b(s))
+        })
+    }
+
+    #[test]
+    fn smoothing_flattens_a_curvature_spike() {
+        let geom = spike_geometry();
+        let rough = NormalParams {
+            b_smoothing: 0.0,
+            ..params()
+        };
+        let (sharp, n_sharp) = run(&mut StripesB::default(), &geom, &rough, DELTA);
+        let (smooth, n_smooth) = run(&mut StripesB::default(), &geom, &params(), DELTA);
+        let (p_sharp, p_smooth) = (
+            PatchSummary::of(&geom, &sharp).pmax,
+            PatchSummary::of(&geom, &smooth).pmax,
+        );
+        let p_hertz = hertz(1.0).1.p0;
+        eprintln!(
+            "spike: pmax/p0_H {:.3} raw, {:.3} smoothed; N {n_sharp:.1} / {n_smooth:.1} N",
+            p_sharp / p_hertz,
+            p_smooth / p_hertz
+        );
+        assert!(p_smooth < 0.9 * p_sharp);
+    }
+
+    #[test]
+    fn least_squares_parabola_keeps_quadratics_and_damps_spikes() {
+        let n = 40;
+        let mut values = [0.0; MAX_STRIPS];
+        let mut out = [0.0; MAX_STRIPS];
+        for (i, v) in values[..n].iter_mut().enumerate() {
+            let t = i as f64;
+            *v = 3.0 - 0.2 * t + 0.01 * t * t;
+        }
+        for m in [1, 2, 4, 10, 40] {
+            smooth_least_squares_parabola(&values[..n], m, &mut out[..n]);
+            for i in 0..n {
+                assert!((out[i] - values[i]).abs() < 1e-12, "m = {m}, i = {i}");
+            }
+        }
+        values[..n].fill(1.0);
+        values[20] = 11.0;
+        smooth_least_squares_parabola(&values[..n], 4, &mut out[..n]);
+        // Savitzky–Golay 9-point quadratic: centre weight 59/231.
+        assert!((out[20] - (1.0 + 10.0 * 59.0 / 231.0)).abs() < 1e-12);
+        assert_eq!(smoothing_half_window(0.2, 40), 4);
+        assert_eq!(smoothing_half_window(0.0, 40), 0);
+        assert_eq!(smoothing_half_window(f64::NAN, 40), 0);
+        assert_eq!(smoothing_half_window(5.0, 40), 40);
+    }
+
+    /// An asymmetric gap with a concave end: B = B0(1 − 1.5 s/w), f consistent,
+    /// A = A0(1 + 0.3 s/w).
+    fn asymmetric_gap(w: f64) -> impl Fn(f64) -> (f64, f64, f64) {
+        move |s: f64| {
+            let (b0, a0) = (CURV_B, 0.8);
+            (
+                b0 * s * s * (1.0 - 0.5 * s / w),
+                a0 * (1.0 + 0.3 * s / w),
+                b0 * (1.0 - 1.5 * s / w),
+            )
+        }
+    }
+
+    fn assert_mirrored(model: &mut impl StripModel, params: &NormalParams) {
+        let w = 1.5 * hertz(1.0).1.b;
+        let gap = asymmetric_gap(w);
+        let n = 77;
+        let geom = StripGeometry::from_fn(-w, 0.7 * w, n, &gap);
+        let mirror = StripGeometry::from_fn(-0.7 * w, w, n, |s| gap(-s));
+        let (sol, n1) = run(model, &geom, params, 2.0 * DELTA);
+        let (sol_m, n2) = run(model, &mirror, params, 2.0 * DELTA);
+        let x_max = sol.half_length.iter().copied().fold(0.0, f64::max);
+        let p_max = sol.pmax.iter().copied().fold(0.0, f64::max);
+        assert!(x_max > 0.0);
+        for i in 0..n {
+            let j = n - 1 - i;
+            assert!(
+                (sol.half_length[i] - sol_m.half_length[j]).abs() <= 1e-9 * x_max,
+                "{i}"
+            );
+            assert!((sol.pmax[i] - sol_m.pmax[j]).abs() <= 1e-9 * p_max, "{i}");
+        }
+        assert!((n1 - n2).abs() <= 1e-9 * n1);
+    }
+
+    #[test]
+    fn mirrored_gap_gives_mirrored_pressure() {
+        assert_mirrored(&mut StripesB::default(), &params());
+        assert_mirrored(&mut StripesAB::default(), &params());
+    }
+
+    #[test]
+    fn normal_force_converges_with_strip_count() {
+        // Strip set not aligned with the patch. V1 is a midpoint sum of x_l·p0 ∝ (1 − s²/b²):
+        // Δs²/(6b) from the interior and at most Δs²/(4b) from each cut edge (the integrand
+        // vanishes linearly there, slope 2/b), so |N/N_lim − 1| ≤ (Δs/b)²/2 (of 4b/3).
+        // Limits: Hertz gap, STRIPES-B: N_H; STRIPES-AB: (2/3)π a_H b̃ p0_H; non-Hertzian gap
+        // f = B0 s² + c s⁴: the 200-strip result (bound doubled: its patch is narrower than b_H).
+        let (curv_a, h) = hertz(1.0 / 3.0);
+        let eps_approx = approximate_shape_factor(curv_a, CURV_B);
+        let width_ab = ((1.0 - eps_approx) * DELTA / CURV_B).sqrt();
+        let limit_ab = 2.0 / 3.0 * std::f64::consts::PI * h.a * width_ab * h.p0;
+        let hertz_gap = |s: f64| (CURV_B * s * s, curv_a, CURV_B);
+        let quartic = |s: f64| {
+            let c = CURV_B / (3.0 * h.b * h.b);
+            (
+                CURV_B * s * s + c * s.powi(4),
+                curv_a,
+                CURV_B + 6.0 * c * s * s,
+            )
+        };
+        for (model, limit) in [(0, h.normal_force), (1, limit_ab)] {
+            let force = |n: usize, gap: &dyn Fn(f64) -> (f64, f64, f64)| {
+                let geom = StripGeometry::from_fn(-1.3 * h.b, 1.17 * h.b, n, gap);
+                let n_total = if model == 0 {
+                    run(&mut StripesB::default(), &geom, &params(), DELTA).1
+                } else {
+                    run(&mut StripesAB::default(), &geom, &params(), DELTA).1
+                };
+                (n_total, geom.ds / h.b)
+            };
+            let (n_ref_q, step_ref) = force(MAX_STRIPS, &quartic);
+            for n in [25, 50, 100, MAX_STRIPS] {
+                let (n_h, step) = force(n, &hertz_gap);
+                let err_h = (n_h / limit - 1.0).abs();
+                let err_q = (force(n, &quartic).0 / n_ref_q - 1.0).abs();
+                eprintln!(
+                    "model {model}, {n} strips, Δs/b = {step:.4}: Hertz gap |N/N_lim − 1| = \
+                     {err_h:.2e} (bound {:.2e}), quartic vs {MAX_STRIPS}: {err_q:.2e}",
+                    0.5 * step * step
+                );
+                assert!(err_h <= 0.5 * step * step);
+                assert!(err_q <= step * step + step_ref * step_ref);
+            }
+        }
+    }
+
+    /// Awkward geometries: conformal, concave, two minima, zero/negative A, non-finite B,
+    /// one strip, no strip.
+    fn awkward_geometries() -> Vec<(&'static str, StripGeometry)> {
+        let w = 0.01;
+        let two_min = move |s: f64| {
+            // f = k s²(s − s2)²: minima at 0 and s2, concave hump between them.
+            let (k, s2) = (2e4, 0.6 * w);
+            let f = k * s * s * (s - s2).powi(2);
+            (f, 1.0, k * (6.0 * s * s - 6.0 * s * s2 + s2 * s2))
+        };
+        let mut nan_b = StripGeometry::quadratic(1.0, 2.0, -w, w, 30);
+        nan_b.curv_b[3] = f64::NAN;
+        nan_b.curv_b[4] = f64::INFINITY;
+        nan_b.curv_b[5] = f64::NEG_INFINITY;
+        vec![
+            (
+                "conformal",
+                StripGeometry::from_fn(-w, w, 40, |_| (0.0, 1.0, 0.0)),
+            ),
+            (
+                "concave",
+                StripGeometry::from_fn(-w, w, 40, |s| (-s * s, 1.0, -1.0)),
+            ),
+            (
+                "concave f ≥ 0",
+                StripGeometry::from_fn(-w, w, 40, |s| (0.01 * s.abs(), 1.0, -2.0)),
+            ),
+            (
+                "two minima",
+                StripGeometry::from_fn(-0.5 * w, 1.2 * w, 120, two_min),
+            ),
+            (
+                "A ≤ 0",
+                StripGeometry::from_fn(-w, w, 40, |s| (s * s, s * 1e3, 1.0)),
+            ),
+            ("non-finite B", nan_b),
+            (
+                "extreme ratios",
+                StripGeometry::from_fn(-w, w, 40, |s| (s * s, 1e-9, 1e9)),
+            ),
+            ("one strip", StripGeometry::quadratic(1.0, 2.0, -w, w, 1)),
+            (
+                "one strip off origin",
+                StripGeometry::quadratic(1.0, -2.0, 0.2 * w, w, 1),
+            ),
+            ("no strip", StripGeometry::default()),
+        ]
+    }
+
+    const AWKWARD_DELTAS: [f64; 8] = [-1e-5, 0.0, 1e-12, 5e-5, 1e-2, 1e3, f64::NAN, f64::INFINITY];
+
+    fn assert_robust(model: &mut impl StripModel) {
+        for (name, geom) in awkward_geometries() {
+            for b_smoothing in [0.0, 0.2, 3.0] {
+                let p = NormalParams {
+                    b_smoothing,
+                    ..params()
+                };
+                for delta in AWKWARD_DELTAS {
+                    let (sol, n) = run(model, &geom, &p, delta);
+                    no_nan(&sol, n);
+                    if delta.is_nan() || delta <= 0.0 {
+                        assert_eq!(n, 0.0, "{name}, δ = {delta}");
+                    }
+                    if name == "one strip" && delta == 5e-5 {
+                        assert!(n > 0.0, "{name}");
+                    }
+                }
+            }
+        }
+        // Unusable parameters fall back to defaults or give no contact, never NaN.
+        let geom = StripGeometry::quadratic(1.0, -2.0, -0.01, 0.01, 20);
+        for p in [
+            NormalParams {
+                b_min: 0.0,
+                ..params()
+            },
+            NormalParams {
+                b_min: f64::NAN,
+                e_star: -1.0,
+                b_smoothing: f64::NAN,
+                ..params()
+            },
+        ] {
+            let (sol, n) = run(model, &geom, &p, DELTA);
+            no_nan(&sol, n);
+        }
+    }
+
+    #[test]
+    fn awkward_inputs_give_no_nan_and_no_panic() {
+        assert_robust(&mut StripesB::default());
+        assert_robust(&mut StripesAB::default());
+    }
+
+    /// Largest step of `values` between neighbours.
+    fn max_jump(values: &[f64]) -> f64 {
+        values
+            .windows(2)
+            .map(|w| (w[1] - w[0]).abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// A family where B crosses zero inside the strip set: B = B0(1 − s/s_t), f consistent
+    /// (f = B0 s²(1 − s/(3 s_t)) > 0 for s < 3 s_t), A = 1 1/m. s_t from 3w down to 0.4w moves the
+    /// zero of B from outside the set to well inside it.
+    fn sweep_geometry(s_t: f64, w: f64) -> StripGeometry {
+        StripGeometry::from_fn(-w, w, 80, |s| {
+            (
+                CURV_B * s * s * (1.0 - s / (3.0 * s_t)),
+                1.0,
+                CURV_B * (1.0 - s / s_t),
+            )
+        })
+    }
+
+    /// N along a lateral sweep (B crossing zero) and along δ: continuous, i.e. the largest jump
+    /// between neighbours shrinks ~10× when the sweep step is refined 10× (a discontinuity would
+    /// keep it), and N(δ) is non-decreasing.
+    fn assert_continuous_sweep<M: StripModel>(make: impl Fn() -> M) {
+        let w = 1.5 * hertz(1.0 / 1.5).1.b;
+        // Deep enough that STRIPES-AB's shifted (stiffer) B still lets B < 0 strips touch.
+        let sweep_delta = 3.0 * DELTA;
+        let family = |steps: usize| -> Vec<f64> {
+            (0..=steps)
+                .map(|k| {
+                    let s_t = w * (3.0 - 2.6 * k as f64 / steps as f64);
+                    run(&mut make(), &sweep_geometry(s_t, w), &params(), sweep_delta).1
+                })
+                .collect()
+        };
+        let (coarse, fine) = (family(40), family(400));
+        let (j_coarse, j_fine) = (max_jump(&coarse), max_jump(&fine));
+        let geom = sweep_geometry(0.5 * w, w);
+        let in_delta = |steps: usize| -> Vec<f64> {
+            let mut model = make();
+            let mut out = StripSolution::default();
+            model.prepare(&geom, &params(), table());
+            (0..=steps)
+                .map(|k| {
+                    let delta = 4.0 * DELTA * k as f64 / steps as f64;
+                    model.solve(&geom, &params(), table(), delta, &mut out)
+                })
+                .collect()
+        };
+        let (d_coarse, d_fine) = (in_delta(40), in_delta(400));
+        let (k_coarse, k_fine) = (max_jump(&d_coarse), max_jump(&d_fine));
+        eprintln!(
+            "sweep: N {:.0}…{:.0} N, max jump {j_coarse:.1} → {j_fine:.2} N; \
+             N(δ) max jump {k_coarse:.1} → {k_fine:.2} N",
+            fine[0], fine[400]
+        );
+        assert!(fine.iter().all(|n| n.is_finite() && *n > 0.0));
+        assert!(j_fine < 0.2 * j_coarse);
+        assert!(d_fine.windows(2).all(|w| w[1] >= w[0]));
+        assert!(k_fine < 0.2 * k_coarse);
+        // The sweep is meaningful: at its end, strips with raw B < 0 are in contact.
+        let last = sweep_geometry(0.4 * w, w);
+        let (sol, _) = run(&mut make(), &last, &params(), sweep_delta);
+        assert!((0..last.n).any(|i| last.curv_b[i] < 0.0 && sol.half_length[i] > 0.0));
+    }
+
+    #[test]
+    fn normal_force_is_continuous_while_b_crosses_zero() {
+        assert_continuous_sweep(StripesB::default);
+        assert_continuous_sweep(StripesAB::default);
     }
 }

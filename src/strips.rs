@@ -69,12 +69,7 @@ impl StripGeometry {
     }
 
     /// A gap from a function s ↦ (f, A, B) sampled at the centres of `n` strips on [s_lo, s_hi].
-    pub fn from_fn(
-        s_lo: f64,
-        s_hi: f64,
-        n: usize,
-        gap: impl Fn(f64) -> (f64, f64, f64),
-    ) -> Self {
+    pub fn from_fn(s_lo: f64, s_hi: f64, n: usize, gap: impl Fn(f64) -> (f64, f64, f64)) -> Self {
         let n = n.clamp(1, MAX_STRIPS);
         let mut g = Self {
             n,
@@ -251,7 +246,7 @@ pub trait StripModel {
 }
 
 /// The normal contact models (FMU parameter `normalModel`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum NormalModel {
     /// 1: Hertz per contact patch (multi-Hertzian), no strips.
     #[default]
@@ -288,7 +283,10 @@ impl NormalModel {
 
     /// FMU code (1…6).
     pub fn code(self) -> i32 {
-        Self::ALL.iter().position(|m| *m == self).map_or(1, |i| i as i32 + 1)
+        Self::ALL
+            .iter()
+            .position(|m| *m == self)
+            .map_or(1, |i| i as i32 + 1)
     }
 
     /// Short name (CLI, reports).
@@ -310,9 +308,14 @@ impl NormalModel {
 
     /// A solver for a strip model; `None` for Hertz (no strips).
     pub fn strip_model(self) -> Option<Box<dyn StripModel + Send>> {
-        // DISPATCH-PENDING
-        let _ = self;
-        None
+        Some(match self {
+            NormalModel::Hertz => return None,
+            NormalModel::Linder => return None,
+            NormalModel::KikPiotrowski => return None,
+            NormalModel::StripesB => Box::new(crate::stripes::StripesB::default()),
+            NormalModel::StripesAB => Box::new(crate::stripes::StripesAB::default()),
+            NormalModel::Analyn => Box::new(crate::analyn::Analyn::default()),
+        })
     }
 }
 

@@ -8,7 +8,9 @@
 //!    strips cover the region ([`crate::contact_search::WheelOnRail::strip_geometry`]);
 //! 2. the patch's normal approach is δ_p = dz cos γ_p − g_p (g_p its normal gap at nominal
 //!    height) and the strip model gives its pressure; the wheel's vertical force is
-//!    Σ N_p cos γ_p plus the creep forces' vertical components (held fixed during the iteration);
+//!    Σ N_p cos γ_p, γ_p the rail's angle at the patch's force centroid (its reference point,
+//!    along whose normal the planar patch's force acts), plus the creep forces' vertical
+//!    components (held fixed during the iteration);
 //! 3. prescribed load: dz by a bracketed Illinois iteration (N(dz) is monotone and continuous; its
 //!    slope jumps where strips or patches enter, which a bracketing method tolerates);
 //! 4. **re-striping**: the strips of step 1 cover the rigid interpenetration region, wider than a
@@ -21,9 +23,7 @@
 //! [`StripPoints`] for the tangential problem); the vertical gap's regions decide which minima
 //! share a patch at the trial lowering.
 
-use crate::contact_search::{
-    ContactCandidates, ContactPlane, Region, StripPoints, WheelOnRail,
-};
+use crate::contact_search::{ContactCandidates, ContactPlane, Region, StripPoints, WheelOnRail};
 use crate::strips::{
     HertzShapeTable, NormalModel, NormalParams, PatchSummary, StripGeometry, StripModel,
     StripSolution,
@@ -59,6 +59,13 @@ impl StripPatch {
 
     pub fn summary(&self) -> PatchSummary {
         PatchSummary::of(&self.geom, &self.sol)
+    }
+
+    /// Contact angle of the patch: the rail's angle at the force centroid of the strips (the
+    /// patch's reference point; planar patch, so the whole normal force acts along it) [rad].
+    pub fn reference_angle(&self) -> f64 {
+        let centroid = self.summary().s_centroid;
+        self.interpolate(&self.points.contact_angle, centroid)
     }
 
     /// Linear interpolation of a per-strip quantity at in-plane coordinate `s`.
@@ -118,15 +125,17 @@ impl StripSide {
     }
 
     /// Vertical force of the rail on the wheel lowered by `dz` (upwards positive) [N].
-    fn vertical_force(
-        &mut self,
-        dz: f64,
-        params: &NormalParams,
-        table: &HertzShapeTable,
-    ) -> f64 {
+    fn vertical_force(&mut self, dz: f64, params: &NormalParams, table: &HertzShapeTable) -> f64 {
         self.patches[..self.count]
             .iter_mut()
-            .map(|p| p.solve(dz, params, table) * p.plane.gamma.cos())
+            .map(|p| {
+                let n = p.solve(dz, params, table);
+                if n > 0.0 {
+                    n * p.reference_angle().cos()
+                } else {
+                    0.0
+                }
+            })
             .sum()
     }
 
@@ -146,13 +155,19 @@ impl StripSide {
             let w_first = geometry.lateral_at(region.first as f64);
             let w_last = geometry.lateral_at(region.last as f64);
             // The deepest candidate inside the region is its first-contact point.
-            let w0 = candidates
+            let (w0, lift) = candidates
                 .as_slice()
                 .iter()
                 .filter(|c| (w_first..=w_last).contains(&c.lateral))
                 .min_by(|a, b| a.gap.total_cmp(&b.gap))
-                .map_or_else(|| geometry.lateral_at(region.deepest as f64), |c| c.lateral);
-            let plane = geometry.contact_plane(w0);
+                .map_or_else(
+                    || {
+                        let p = geometry.point_at(region.deepest as f64);
+                        (p.lateral, p.gap)
+                    },
+                    |c| (c.lateral, c.gap),
+                );
+            let plane = geometry.contact_plane(w0, lift);
             let s_a = geometry.plane_coordinate_at(&plane, region.first as f64 - 1.0);
             let s_b = geometry.plane_coordinate_at(&plane, region.last as f64 + 1.0);
             let patch = &mut self.patches[self.count];
@@ -206,13 +221,21 @@ impl StripSide {
                 let origin = (first..=last)
                     .min_by(|&a, &b| old.geom.f[a].total_cmp(&old.geom.f[b]))
                     .unwrap_or(first);
-                let w0 = candidates
+                // The candidate inside the run, else the run's lowest strip (its gap relative
+                // to the old origin gives the lift).
+                let (w0, lift) = candidates
                     .as_slice()
                     .iter()
                     .filter(|c| (w_min..=w_max).contains(&c.lateral))
                     .min_by(|a, b| a.gap.total_cmp(&b.gap))
-                    .map_or(old.points.lateral[origin], |c| c.lateral);
-                let plane = geometry.contact_plane(w0);
+                    .map_or(
+                        (
+                            old.points.lateral[origin],
+                            old.plane.lift + old.geom.f[origin] / old.plane.gamma.cos(),
+                        ),
+                        |c| (c.lateral, c.gap),
+                    );
+                let plane = geometry.contact_plane(w0, lift);
                 let s_lo = geometry.plane_coordinate_of(&plane, w_min);
                 let s_hi = geometry.plane_coordinate_of(&plane, w_max);
                 let new = &mut self.spare[count];

@@ -52,6 +52,10 @@ const LOAD_TOLERANCE: f64 = 1e-9;
 /// Smallest share of the wheel load the normal forces carry when the creep forces' vertical
 /// components are subtracted (they cannot carry the wheel: |Fy| ≤ μN).
 const MIN_NORMAL_SHARE: f64 = 0.05;
+/// Passes of the strip models' load balance that update the creep forces' vertical component.
+const CREEP_PASSES: usize = 4;
+/// Relative tolerance of that update on the wheel load.
+const CREEP_TOLERANCE: f64 = 1e-7;
 /// Iteration limit of the load balance (safeguarded secant; converges in ~5–10).
 const LOAD_ITERATIONS: usize = 60;
 
@@ -241,12 +245,7 @@ impl Wheelset {
     ) -> Result<Self, GeometryError> {
         settings.material.validate()?;
         if !(1..=MAX_STRIPS).contains(&settings.strips) {
-            return Err(InputError::new(
-                "nStrips",
-                settings.strips as f64,
-                "[1, 200]",
-            )
-            .into());
+            return Err(InputError::new("nStrips", settings.strips as f64, "[1, 200]").into());
         }
         if !(settings.b_smoothing.is_finite() && (0.0..=1.0).contains(&settings.b_smoothing)) {
             return Err(InputError::new("bSmoothing", settings.b_smoothing, "[0, 1]").into());
@@ -614,22 +613,27 @@ fn solve_strips(
             hint,
         )
     };
-    // The creep forces' vertical component, from the Hertz solution first; a second pass
-    // corrects it with the strip model's own creep forces.
+    // The creep forces' vertical component, from the Hertz solution first; further passes
+    // correct it with the strip model's own creep forces (a fixed point that converges fast:
+    // the creep forces scale with the normal force, and only their vertical part, ≤ μN sin γ,
+    // enters).
     let mut creep = creep_upward(out, side.sigma);
     let mut dz = hint;
-    for pass in 0..2 {
+    for pass in 0..CREEP_PASSES {
         let target = load.map(|q| (q - creep).max(MIN_NORMAL_SHARE * q));
         dz = solve(&mut strips, side, target, dz);
         side.strips = Some(strips);
         evaluate_strips(side, ctx, input, dz, out)?;
         let new_creep = creep_upward(out, side.sigma);
         let Some(q) = load else { break };
-        if pass == 1 || (new_creep - creep).abs() <= LOAD_TOLERANCE * q {
+        if pass + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
             break;
         }
         creep = new_creep;
-        strips = side.strips.take().expect("strip buffers were just returned");
+        strips = side
+            .strips
+            .take()
+            .expect("strip buffers were just returned");
     }
     Ok(())
 }

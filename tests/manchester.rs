@@ -42,6 +42,7 @@ use std::sync::OnceLock;
 
 use railcontact::point_contact::Material;
 use railcontact::profile::{Profile, ProfileKind};
+use railcontact::strips::NormalModel;
 use railcontact::track::TrackSetup;
 use railcontact::wheelset::{
     Creepages, PatchResult, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
@@ -102,6 +103,9 @@ struct Reference {
     angle: f64,
     ycp_mm: f64,
     fn_n: f64,
+    pmax_mpa: f64,
+    /// Elements of 0.2 × 0.2 mm in contact.
+    ncon: f64,
 }
 
 fn read_summary(name: &str) -> Vec<Reference> {
@@ -121,6 +125,7 @@ fn read_summary(name: &str) -> Vec<Reference> {
         col("ycp_rail_mm"),
         col("fn_N"),
     );
+    let (ip, inc) = (col("pmax_MPa"), col("ncon"));
     let rows: Vec<Reference> = lines
         .enumerate()
         .map(|(k, l)| {
@@ -135,6 +140,8 @@ fn read_summary(name: &str) -> Vec<Reference> {
                 angle: num(ia),
                 ycp_mm: num(ic),
                 fn_n: num(i_fn),
+                pmax_mpa: num(ip),
+                ncon: num(inc),
             }
         })
         .collect();
@@ -194,6 +201,10 @@ fn read_poses(name: &str) -> Vec<Pose> {
 // The solver
 
 fn benchmark_wheelset() -> Wheelset {
+    benchmark_wheelset_with(NormalModel::Hertz)
+}
+
+fn benchmark_wheelset_with(model: NormalModel) -> Wheelset {
     let load = |file: &str, kind| {
         let p = shared_file(&format!("profiles/{file}"));
         Profile::load(p.to_str().unwrap(), kind, 0.0)
@@ -216,6 +227,10 @@ fn benchmark_wheelset() -> Wheelset {
             friction: MU,
         },
     );
+    let settings = WheelsetSettings {
+        normal_model: model,
+        ..settings
+    };
     Wheelset::new(&wheel, &rail, settings).expect("benchmark wheelset")
 }
 
@@ -678,4 +693,57 @@ fn vertical_balance_and_finite_outputs_over_the_sweep() {
         }
     }
     assert!(bad.is_empty(), "\n  {}", bad.join("\n  "));
+}
+
+/// Area and maximum pressure of the right wheel's patches for every normal model against the
+/// exact theory over the 21 states (CONTACT's element area 0.2 × 0.2 mm). Printed with
+/// `--nocapture`; asserted: every state finite and positive for every model, and ANALYN within
+/// ±15 % in area and ±20 % in pmax on the tread states 0…4.5 mm except at 0.5 mm — the
+/// near-conformal two-point state where the reference's own fast methods err by 18–21 % in area
+/// and the contact position (the issue-3 gap) already differs by 2 mm.
+#[test]
+fn non_elliptic_models_area_and_pmax_against_contact() {
+    let d = data();
+    let element_area_mm2 = 0.2 * 0.2;
+    print!("y mm  ref area  pmax |");
+    for m in &NormalModel::ALL[1..] {
+        print!(" {:>16}", m.name());
+    }
+    println!("   (area / pmax errors in %)");
+    let mut results = Vec::new();
+    for m in &NormalModel::ALL[1..] {
+        let mut ws = benchmark_wheelset_with(*m);
+        results.push(sweep(&mut ws, &d.poses, 1.0));
+    }
+    let mut failures = Vec::new();
+    for (k, r) in d.right_ref.iter().enumerate() {
+        let ref_area = r.ncon * element_area_mm2;
+        print!("{:4.1} {:8.1} {:6.0} |", r.y_mm, ref_area, r.pmax_mpa);
+        for (m, res) in NormalModel::ALL[1..].iter().zip(&results) {
+            let side = &res[k].right;
+            let patches = &side.patches[..side.n_patches];
+            let area: f64 = patches.iter().map(|p| p.area).sum::<f64>() * 1e6;
+            let pmax = patches.iter().map(|p| p.pmax).fold(0.0, f64::max) / 1e6;
+            assert!(
+                area > 0.0 && pmax > 0.0 && area.is_finite() && pmax.is_finite(),
+                "{} at {} mm: {side:?}",
+                m.name(),
+                r.y_mm
+            );
+            let (ea, ep) = (
+                100.0 * (area / ref_area - 1.0),
+                100.0 * (pmax / r.pmax_mpa - 1.0),
+            );
+            print!("   {ea:+6.1} {ep:+6.1}");
+            let tread = r.angle.abs() < TREAD_MAX_ANGLE && r.y_mm != 0.5;
+            if *m == NormalModel::Analyn && tread && (ea.abs() > 15.0 || ep.abs() > 20.0) {
+                failures.push(format!(
+                    "ANALYN at {} mm: area {ea:+.1} %, pmax {ep:+.1} %",
+                    r.y_mm
+                ));
+            }
+        }
+        println!();
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
 }

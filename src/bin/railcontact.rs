@@ -412,7 +412,10 @@ fn solve(case: Option<&str>, grid: Option<usize>) -> Result<String, Failure> {
     out.push_str("  \"strips\": {");
     let mut first = true;
     let mut tables = Vec::new();
-    for (side, result, right) in [("left", &patches.left, false), ("right", &patches.right, true)] {
+    for (side, result, right) in [
+        ("left", &patches.left, false),
+        ("right", &patches.right, true),
+    ] {
         let mut model_strips = wheelset
             .strip_patches(right)
             .iter()
@@ -455,7 +458,10 @@ fn solve(case: Option<&str>, grid: Option<usize>) -> Result<String, Failure> {
             let _ = write!(out, "{}\n    \"{name}\": [", if k == 0 { "" } else { "," });
             let mut first_point = true;
             for strip in table.iter().filter(|s| s.x_lead > s.x_trail) {
-                let (centre, half) = (0.5 * (strip.x_lead + strip.x_trail), 0.5 * (strip.x_lead - strip.x_trail));
+                let (centre, half) = (
+                    0.5 * (strip.x_lead + strip.x_trail),
+                    0.5 * (strip.x_lead - strip.x_trail),
+                );
                 for j in 0..nx {
                     // Element centres of nx equal elements along the strip.
                     let u = (2 * j + 1) as f64 / nx as f64 - 1.0;

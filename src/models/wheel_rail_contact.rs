@@ -8,8 +8,8 @@ use crate::fmi::model::{InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::{IntegerVar, RealVar, Values};
 use crate::point_contact::Material;
 use crate::profile::{Profile, ProfileKind};
-use crate::track::TrackSetup;
 use crate::strips::NormalModel;
+use crate::track::TrackSetup;
 use crate::wheelset::{
     Creepages, SideResult, Vertical, Wheelset, WheelsetError, WheelsetInput, WheelsetResult,
     WheelsetSettings, MAX_PATCHES,
@@ -232,12 +232,14 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
         )?,
         scan_step: values.real(var::scanStep),
         b_min: values.real(var::bMin),
-        normal_model: NormalModel::from_code(values.integer(var::normalModel)).ok_or_else(|| {
-            ModelError::Error(format!(
-                "normalModel = {} is outside the allowed range [1, 6]",
-                values.integer(var::normalModel)
-            ))
-        })?,
+        normal_model: NormalModel::from_code(values.integer(var::normalModel)).ok_or_else(
+            || {
+                ModelError::Error(format!(
+                    "normalModel = {} is outside the allowed range [1, 6]",
+                    values.integer(var::normalModel)
+                ))
+            },
+        )?,
         strips: usize::try_from(values.integer(var::nStrips)).unwrap_or(0),
         b_smoothing: values.real(var::bSmoothing),
         kp_shape_correction: values.boolean(var::kpShapeCorrection),

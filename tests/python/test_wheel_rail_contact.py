@@ -438,3 +438,61 @@ def test_two_instances_with_different_y_are_independent(wrc_model_description, w
     finally:
         for slave in slaves.values():
             slave.free()
+
+
+# ---------------------------------------------------------------------------------------------
+# 5. Non-elliptic normal models (normalModel 2–6)
+
+NORMAL_MODELS = {2: "Linder", 3: "Kik-Piotrowski", 4: "STRIPES-B", 5: "STRIPES-A&B", 6: "ANALYN"}
+
+
+def _central_params(model: int) -> dict[str, float | int | str]:
+    """The seed's central case (reference/central/README): benchmark profiles, E = 210 GPa."""
+    return {
+        "wheelProfile": str(shared_file("profiles/MBench_S1002_v3.prw")),
+        "railProfile": str(shared_file("profiles/MBench_UIC60_v3.prr")),
+        "railInclination": 0.0,
+        "E": 2.1e11,
+        "nu": 0.28,
+        "normalModel": model,
+    }
+
+
+@pytest.mark.parametrize("model", sorted(NORMAL_MODELS))
+def test_every_normal_model_runs_a_lateral_sweep_in_fmpy(new_wrc, model: int) -> None:
+    # The issue's acceptance: finite, positive area and pmax on shifts −1…+6 mm at 78.5 kN.
+    slave = new_wrc(params=_central_params(model))
+    for y_mm in np.arange(-1.0, 6.0 + 1e-9, 0.5):
+        slave.set(y=y_mm / 1000.0)
+        slave.step()
+        out = slave.outputs()
+        assert all(math.isfinite(v) for v in out.values()), (NORMAL_MODELS[model], y_mm)
+        for side in ("left", "right"):
+            n = slave.get(f"{side}.nPatches")
+            assert n >= 1
+            for k in range(1, n + 1):
+                assert out[f"{side}.p{k}.area"] > 0.0 and out[f"{side}.p{k}.pmax"] > 0.0
+            # The load balance holds whatever the model (tolerance: 1e−6 of the load).
+            assert out[f"{side}.Fz"] == pytest.approx(-Q_DEFAULT, rel=1e-6)
+    assert not slave.errors()
+
+
+def test_central_case_area_and_pmax_through_the_fmu(new_wrc) -> None:
+    # ANALYN (normalModel 6) against the exact theory, through the FMU: the issue's tolerances
+    # (area ±10 %, pmax ±15 %); reference/central/normal_dy0_summary.csv.
+    with open(shared_file("reference/central/normal_dy0_summary.csv"), newline="") as f:
+        ref = next(csv.DictReader(f))
+    slave = new_wrc(params=_central_params(6))
+    slave.step()
+    out = slave.outputs()
+    area = sum(out[f"right.p{k}.area"] for k in range(1, slave.get("right.nPatches") + 1))
+    pmax = max(out[f"right.p{k}.pmax"] for k in range(1, slave.get("right.nPatches") + 1))
+    assert area * 1e6 == pytest.approx(float(ref["area_mm2"]), rel=0.10)
+    assert pmax / 1e6 == pytest.approx(float(ref["pmax_MPa"]), rel=0.15)
+
+
+def test_normal_model_out_of_range_is_rejected_and_logged(new_wrc) -> None:
+    slave = new_wrc(initialize=False)
+    with pytest.raises(FMICallException):
+        slave.set(normalModel=7)
+    assert any("normalModel" in m.message and "7" in m.message for m in slave.errors())
