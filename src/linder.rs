@@ -63,8 +63,9 @@
 //!   usual tread contact) the area is larger and the peak lower than Hertz (A/B = 1/3: area
 //!   +11.0 %, peak −9.9 %; A/B = 0.1: +26.6 %, −21.0 %), as the seed saw against CONTACT; the
 //!   circle is exactly Hertz (N ∝ a_v³ with Hertz's constant); for A > B it is the other way round
-//!   (A/B = 3: area −7.4 %, peak +8.0 %), because the A-based peak uses the curvature along the
-//!   short axis.
+//!   (A/B = 3: area −7.4 %, peak +8.0 %). The asymmetry comes from taking the peak from A alone:
+//!   the virtual ellipse is not Hertzian for its curvatures, and a B-based peak would mirror the
+//!   A/B = 1/3 figures at A/B = 3.
 //! * N(δ) is continuous and non-decreasing while strips enter a run (a strip enters with
 //!   x_l = 0; on a Hertz gap the edge rule is exact), up to small steps where the parabolic edge
 //!   estimate of a non-quadratic gap changes as a strip enters (≤ 0.2 % per 0.5 % of δ in the

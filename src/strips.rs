@@ -310,8 +310,8 @@ impl NormalModel {
     pub fn strip_model(self) -> Option<Box<dyn StripModel + Send>> {
         Some(match self {
             NormalModel::Hertz => return None,
-            NormalModel::Linder => return None,
-            NormalModel::KikPiotrowski => return None,
+            NormalModel::Linder => Box::new(crate::linder::Linder::default()),
+            NormalModel::KikPiotrowski => Box::new(crate::kik_piotrowski::KikPiotrowski::default()),
             NormalModel::StripesB => Box::new(crate::stripes::StripesB::default()),
             NormalModel::StripesAB => Box::new(crate::stripes::StripesAB::default()),
             NormalModel::Analyn => Box::new(crate::analyn::Analyn::default()),
