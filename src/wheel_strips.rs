@@ -299,6 +299,24 @@ impl StripSide {
         dz
     }
 
+    /// Re-solves the lowering for a new vertical force `target` [N] > 0 on the current patches
+    /// (no new strips: the creep-force update of the load balance must not move strip edges),
+    /// starting from the lowering `dz`. Returns the new lowering.
+    pub fn rebalance(
+        &mut self,
+        settings: &StripSettings,
+        table: &HertzShapeTable,
+        target: f64,
+        touch: f64,
+        dz: f64,
+    ) -> f64 {
+        let params = settings.params;
+        let hi = touch + RANGE_FACTOR * (dz - touch).max(0.0);
+        let dz = self.iterate(target, touch, hi, &params, table);
+        self.vertical_force(dz, &params, table);
+        dz
+    }
+
     /// Illinois iteration for the lowering at which the vertical force equals `q` > 0, in the
     /// bracket [touch, hi] (hi widened until it carries the load).
     fn iterate(

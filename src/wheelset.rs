@@ -53,7 +53,7 @@ const LOAD_TOLERANCE: f64 = 1e-9;
 /// components are subtracted (they cannot carry the wheel: |Fy| ≤ μN).
 const MIN_NORMAL_SHARE: f64 = 0.05;
 /// Passes of the strip models' load balance that update the creep forces' vertical component.
-const CREEP_PASSES: usize = 4;
+const CREEP_PASSES: usize = 6;
 /// Relative tolerance of that update on the wheel load.
 const CREEP_TOLERANCE: f64 = 1e-7;
 /// Iteration limit of the load balance (safeguarded secant; converges in ~5–10).
@@ -621,7 +621,10 @@ fn solve_strips(
     let mut dz = hint;
     for pass in 0..CREEP_PASSES {
         let target = load.map(|q| (q - creep).max(MIN_NORMAL_SHARE * q));
-        dz = solve(&mut strips, side, target, dz);
+        dz = match target {
+            Some(t) if pass > 0 => strips.rebalance(&ctx.strips, table, t, touch, dz),
+            _ => solve(&mut strips, side, target, dz),
+        };
         side.strips = Some(strips);
         evaluate_strips(side, ctx, input, dz, out)?;
         let new_creep = creep_upward(out, side.sigma);
