@@ -344,3 +344,67 @@ fn help_and_bad_arguments() {
         assert!(!stderr(&o).is_empty());
     }
 }
+
+#[test]
+fn solve_with_a_strip_model_gives_its_strips_and_the_pressure_grid() {
+    // ANALYN (normalModel 6) with 30 strips: the strip tables are the model's own strips in
+    // contact; `--grid 8` adds 8 pressure points per strip whose largest value is below the
+    // patch maximum (element centres never sit on the strip's peak) and whose integral
+    // Σ p Δx Δs approximates the normal force to the midpoint rule's accuracy.
+    let case = temp_file(
+        "analyn.json",
+        "{\"normalModel\": 6, \"nStrips\": 30, \"y\": 0.002}\n",
+    );
+    let doc = solve(&["solve", case.to_str().unwrap(), "--grid", "8"]);
+    let strips = doc.get("strips").and_then(Value::as_object).unwrap();
+    let grid = doc.get("grid").and_then(Value::as_object).expect("grid");
+    assert_eq!(strips.len(), grid.len());
+    for ((patch, table), (grid_patch, points)) in strips.iter().zip(grid) {
+        assert_eq!(patch, grid_patch);
+        let rows = table.as_array().unwrap();
+        assert!(
+            !rows.is_empty() && rows.len() <= 30,
+            "{patch}: {} strips",
+            rows.len()
+        );
+        let p = |q: &str| real(&doc, &format!("{patch}.{q}"));
+        let peak = rows
+            .iter()
+            .map(|r| r.get("pmax").and_then(Value::as_f64).unwrap())
+            .fold(0.0, f64::max);
+        assert_eq!(peak, p("pmax"), "{patch}");
+        let points = points.as_array().unwrap();
+        assert_eq!(points.len(), 8 * rows.len());
+        let s: Vec<f64> = rows
+            .iter()
+            .map(|r| r.get("s").and_then(Value::as_f64).unwrap())
+            .collect();
+        let ds = (s[s.len() - 1] - s[0]) / (s.len() - 1).max(1) as f64;
+        let mut force = 0.0;
+        for (k, row) in rows.iter().enumerate() {
+            let f = |q: &str| row.get(q).and_then(Value::as_f64).unwrap();
+            let dx = (f("xLead") - f("xTrail")) / 8.0;
+            for pt in &points[8 * k..8 * k + 8] {
+                let v: Vec<f64> = pt
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| x.as_f64().unwrap())
+                    .collect();
+                assert!(v[0] > f("xTrail") && v[0] < f("xLead") && v[1] == f("s"));
+                assert!(v[2] > 0.0 && v[2] < p("pmax"));
+                force += v[2] * dx * ds;
+            }
+        }
+        // 8 points per semi-ellipse: midpoint rule within ~1 % of (π/2) p0 x_l.
+        assert!(
+            (force / p("Fn") - 1.0).abs() < 0.02,
+            "{patch}: {force} vs {}",
+            p("Fn")
+        );
+    }
+    // Bad --grid values are usage errors.
+    let o = run(&["solve", "--grid", "1"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("--grid 1"));
+}

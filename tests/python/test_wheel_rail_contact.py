@@ -496,6 +496,6 @@ def test_normal_model_out_of_range_is_rejected_and_logged(new_wrc) -> None:
     with pytest.raises(FMICallException):
         slave.set(normalModel=7)
     assert any(
-        re.search(r"\bnormalModel = 7 is outside the allowed range \[1, 6\]", m.text)
+        re.search(r"\bnormalModel = 7 is outside the allowed range integer in \[1, 6\]", m.text)
         for m in slave.errors()
     ), slave.messages
