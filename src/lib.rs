@@ -15,6 +15,7 @@ pub mod analyn;
 pub mod contact_search;
 pub mod elliptic;
 pub mod fastsim;
+pub mod halfspace;
 pub mod hertz;
 pub mod kalker;
 pub mod kik_piotrowski;
