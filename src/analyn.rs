@@ -84,16 +84,6 @@ impl Default for Analyn {
     }
 }
 
-/// The B floor B_min of `params`, or the default floor when the parameter is not a finite
-/// positive number [1/m].
-fn lateral_curvature_floor(params: &NormalParams) -> f64 {
-    if params.b_min.is_finite() && params.b_min > 0.0 {
-        params.b_min
-    } else {
-        NormalParams::default().b_min
-    }
-}
-
 /// Local approach δ_loc = δ − (1 + β) f [m] (A1).
 fn local_approach(delta: f64, one_plus_beta: f64, gap: f64) -> f64 {
     delta - one_plus_beta * gap
@@ -119,7 +109,7 @@ impl Analyn {
 impl StripModel for Analyn {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
         let n = geom.n.min(MAX_STRIPS);
-        let b_min = lateral_curvature_floor(params);
+        let b_min = params.b_floor();
         self.n = n;
         for i in 0..n {
             let raw_b = geom.curv_b[i];

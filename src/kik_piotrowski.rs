@@ -257,16 +257,6 @@ fn strip_kernel_integral(c: f64, lo: f64, hi: f64) -> f64 {
     }
 }
 
-/// The B floor B_min of `params`, or the default floor when the parameter is not a finite
-/// positive number [1/m].
-fn lateral_curvature_floor(params: &NormalParams) -> f64 {
-    if params.b_min.is_finite() && params.b_min > 0.0 {
-        params.b_min
-    } else {
-        NormalParams::default().b_min
-    }
-}
-
 /// Fractional strip index t of the lateral position `u` (t = i at centre s_i).
 fn strip_coordinate(geom: &StripGeometry, u: f64) -> f64 {
     (u - geom.s[0]) / geom.ds
@@ -325,7 +315,7 @@ fn shape_stretch(
     // f64::max ignores a NaN B: then the floor.
     let curv_b = linear_at(&geom.curv_b, n, t0)
         .unwrap_or(f64::NAN)
-        .max(lateral_curvature_floor(params));
+        .max(params.b_floor());
     let Ok(shape) = table.lookup(curv_a, curv_b) else {
         return 1.0;
     };

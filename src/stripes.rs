@@ -117,16 +117,6 @@ fn valid_curvature(curv: f64) -> bool {
     curv.is_finite() && curv > 0.0
 }
 
-/// The B floor B_min of `params`, or the default floor when the parameter is not a finite
-/// positive number [1/m].
-fn lateral_curvature_floor(params: &NormalParams) -> f64 {
-    if valid_curvature(params.b_min) {
-        params.b_min
-    } else {
-        NormalParams::default().b_min
-    }
-}
-
 /// Number of strips used from `geom` (≤ [`MAX_STRIPS`]).
 fn strip_count(geom: &StripGeometry) -> usize {
     geom.n.min(MAX_STRIPS)
@@ -367,7 +357,7 @@ impl StripesB {
 impl StripModel for StripesB {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
         let n = strip_count(geom);
-        let b_min = lateral_curvature_floor(params);
+        let b_min = params.b_floor();
         let st = &mut self.strips;
         st.n = n;
         for (raw, &b) in self.curv_b_raw[..n].iter_mut().zip(&geom.curv_b[..n]) {
@@ -443,7 +433,7 @@ impl StripesAB {
 impl StripModel for StripesAB {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
         let n = strip_count(geom);
-        let b_min = lateral_curvature_floor(params);
+        let b_min = params.b_floor();
         let st = &mut self.strips;
         st.n = n;
         for (b, &raw) in st.curv_b[..n].iter_mut().zip(&geom.curv_b[..n]) {

@@ -217,6 +217,18 @@ pub struct NormalParams {
 /// Default STRIPES-B smoothing window (fraction of the patch width).
 pub const DEFAULT_B_SMOOTHING: f64 = 0.2;
 
+impl NormalParams {
+    /// The floor of B the models apply: `b_min`, or the default where it is not finite and
+    /// positive (the models never fail on a bad parameter; the FMU validates it on setting).
+    pub fn b_floor(&self) -> f64 {
+        if self.b_min.is_finite() && self.b_min > 0.0 {
+            self.b_min
+        } else {
+            Self::default().b_min
+        }
+    }
+}
+
 impl Default for NormalParams {
     fn default() -> Self {
         Self {
