@@ -20,6 +20,7 @@ pub mod hertz;
 pub mod kalker;
 pub mod kik_piotrowski;
 pub mod linder;
+pub mod load_balance;
 pub mod point_contact;
 pub mod profile;
 pub mod stripes;

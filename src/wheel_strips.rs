@@ -24,6 +24,7 @@
 //! share a patch at the trial lowering.
 
 use crate::contact_search::{ContactCandidates, ContactPlane, Region, StripPoints, WheelOnRail};
+use crate::load_balance::balance;
 use crate::strips::{
     HertzShapeTable, NormalModel, NormalParams, PatchSummary, StripGeometry, StripModel,
     StripSolution,
@@ -96,8 +97,6 @@ pub struct StripSettings {
     pub params: NormalParams,
 }
 
-/// Relative tolerance on the vertical force balance.
-const LOAD_TOLERANCE: f64 = 1e-9;
 /// Iteration limit of the load balance.
 const LOAD_ITERATIONS: usize = 80;
 /// Trial lowering for the strip range, as a multiple of the Hertz approach: the models' patches
@@ -317,8 +316,8 @@ impl StripSide {
         dz
     }
 
-    /// Illinois iteration for the lowering at which the vertical force equals `q` > 0, in the
-    /// bracket [touch, hi] (hi widened until it carries the load).
+    /// The lowering at which the vertical force equals `q` > 0 ([`balance`], first trial at
+    /// `hi`).
     fn iterate(
         &mut self,
         q: f64,
@@ -327,46 +326,10 @@ impl StripSide {
         params: &NormalParams,
         table: &HertzShapeTable,
     ) -> f64 {
-        let (mut lo, mut f_lo) = (touch, -q);
-        let mut hi = hi.max(touch + 1e-9);
-        let mut f_hi = self.vertical_force(hi, params, table) - q;
-        // Widen until the bracket holds the load (5 cm of approach is far beyond any contact).
-        while f_hi <= 0.0 && hi - touch < 0.05 {
-            lo = hi;
-            f_lo = f_hi;
-            hi = touch + 2.0 * (hi - touch);
-            f_hi = self.vertical_force(hi, params, table) - q;
-        }
-        let mut kept = 0i8;
-        for _ in 0..LOAD_ITERATIONS {
-            let mut mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-            if !mid.is_finite() || mid <= lo.min(hi) || mid >= lo.max(hi) {
-                mid = 0.5 * (lo + hi);
-            }
-            let f_mid = self.vertical_force(mid, params, table) - q;
-            if f_mid.abs() <= LOAD_TOLERANCE * q {
-                return mid;
-            }
-            if (f_mid > 0.0) == (f_hi > 0.0) {
-                hi = mid;
-                f_hi = f_mid;
-                if kept == -1 {
-                    f_lo *= 0.5;
-                }
-                kept = -1;
-            } else {
-                lo = mid;
-                f_lo = f_mid;
-                if kept == 1 {
-                    f_hi *= 0.5;
-                }
-                kept = 1;
-            }
-        }
-        if f_lo.abs() < f_hi.abs() {
-            lo
-        } else {
-            hi
-        }
+        let first = (hi - touch).max(1e-9);
+        let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, |dz| {
+            Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q)
+        });
+        balanced.lowering
     }
 }

@@ -31,6 +31,7 @@ use crate::contact_search::{
 use crate::error::InputError;
 use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use crate::hertz::{contact_modulus, hertz_from_approach, shear_modulus};
+use crate::load_balance::balance;
 use crate::point_contact::Material;
 use crate::profile::Profile;
 use crate::strips::{
@@ -47,8 +48,6 @@ pub const MAX_PATCHES: usize = 3;
 /// wheel at rest has zero creepage). Documented in `docs/conventions.md`.
 pub const V_MIN: f64 = 0.01;
 
-/// Relative tolerance on the vertical force balance.
-const LOAD_TOLERANCE: f64 = 1e-9;
 /// Smallest share of the wheel load the normal forces carry when the creep forces' vertical
 /// components are subtracted (they cannot carry the wheel: |Fy| ≤ μN).
 const MIN_NORMAL_SHARE: f64 = 0.05;
@@ -696,8 +695,7 @@ fn hertz_side(
         };
         return Ok(());
     }
-    // Bracket: at the touching height the force is zero; lower the wheel by a Hertzian estimate
-    // for the deepest point alone, doubling until the force exceeds the load.
+    // First approach: a Hertzian estimate for the deepest point alone.
     let deepest = side
         .candidates
         .as_slice()
@@ -708,53 +706,12 @@ fn hertz_side(
     let unit = hertz_from_approach(deepest.curv_a, deepest.curv_b, 1e-4, ctx.e_star)?;
     let stiffness = unit.normal_force / 1e-4f64.powf(1.5);
     let cos_g = deepest.contact_angle.cos().max(0.05);
-    let mut hi_pen = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
-    let (mut lo, mut f_lo) = (touch, -q);
-    let mut hi;
-    let mut f_hi;
-    loop {
-        hi = touch + hi_pen;
-        f_hi = evaluate_side(side, ctx, input, hi, out)? - q;
-        if f_hi > 0.0 || hi_pen > 0.05 {
-            break;
-        }
-        lo = hi;
-        f_lo = f_hi;
-        hi_pen *= 2.0;
-    }
-    // Illinois (modified regula falsi) on the residual: bracketing, superlinear.
-    let mut side_kept = 0i8;
-    let mut mid = hi;
-    for _ in 0..LOAD_ITERATIONS {
-        mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-        if !mid.is_finite() || mid <= lo.min(hi) || mid >= lo.max(hi) {
-            mid = 0.5 * (lo + hi);
-        }
-        let f_mid = evaluate_side(side, ctx, input, mid, out)? - q;
-        if f_mid.abs() <= LOAD_TOLERANCE * q {
-            return Ok(());
-        }
-        if (f_mid > 0.0) == (f_hi > 0.0) {
-            hi = mid;
-            f_hi = f_mid;
-            if side_kept == -1 {
-                f_lo *= 0.5;
-            }
-            side_kept = -1;
-        } else {
-            lo = mid;
-            f_lo = f_mid;
-            if side_kept == 1 {
-                f_hi *= 0.5;
-            }
-            side_kept = 1;
-        }
-    }
-    // The force can jump where two interpenetration regions merge (two Hertz patches become
-    // one); the bracket then closes on the jump. Take the bracket end nearer to the load.
-    let best = if f_lo.abs() < f_hi.abs() { lo } else { hi };
-    if best != mid {
-        evaluate_side(side, ctx, input, best, out)?;
+    let hi_pen = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
+    let balanced = balance(touch, hi_pen, q, LOAD_ITERATIONS, |dz| {
+        Ok::<_, InputError>(evaluate_side(side, ctx, input, dz, out)? - q)
+    })?;
+    if !balanced.evaluated {
+        evaluate_side(side, ctx, input, balanced.lowering, out)?;
     }
     Ok(())
 }

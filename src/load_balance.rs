@@ -1,0 +1,130 @@
+//! The wheel-height iteration for a prescribed wheel load, shared by the multi-Hertzian and the
+//! strip solutions of a wheel (physics.md §5.2).
+//!
+//! The vertical force F(dz) of the rail on a wheel lowered by dz is zero at the touching height
+//! and grows monotonically, but its slope jumps where patches or strips enter and it can jump
+//! where two interpenetration regions merge. So: bracket the load by doubling the approach from
+//! a first estimate, then Illinois (modified regula falsi) inside the bracket — bracketing,
+//! superlinear, and when the force jumps across the load the bracket closes on the jump and the
+//! end nearer to the load is taken.
+
+/// Relative tolerance on the vertical force balance.
+pub const LOAD_TOLERANCE: f64 = 1e-9;
+
+/// Largest approach tried while bracketing [m] (5 cm is far beyond any elastic contact).
+const MAX_APPROACH: f64 = 0.05;
+
+/// Result of [`balance`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Balanced {
+    /// The lowering that carries the load [m].
+    pub lowering: f64,
+    /// Whether `lowering` was the last point evaluated (so the caller's state belongs to it).
+    pub evaluated: bool,
+}
+
+/// Finds the lowering dz at which `residual(dz)` = F(dz) − load [N] vanishes (to
+/// [`LOAD_TOLERANCE`] × load), given the touching lowering `touch` (where the residual is
+/// −load), a first approach estimate `first_approach` > 0 [m] and at most `iterations` Illinois
+/// steps. Errors of `residual` are passed on.
+pub fn balance<E>(
+    touch: f64,
+    first_approach: f64,
+    load: f64,
+    iterations: usize,
+    mut residual: impl FnMut(f64) -> Result<f64, E>,
+) -> Result<Balanced, E> {
+    let (mut lo, mut f_lo) = (touch, -load);
+    let mut approach = first_approach;
+    let (mut hi, mut f_hi);
+    loop {
+        hi = touch + approach;
+        f_hi = residual(hi)?;
+        if f_hi > 0.0 || approach > MAX_APPROACH {
+            break;
+        }
+        lo = hi;
+        f_lo = f_hi;
+        approach *= 2.0;
+    }
+    let mut kept = 0i8;
+    let mut last = hi;
+    for _ in 0..iterations {
+        let mut mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+        if !mid.is_finite() || mid <= lo.min(hi) || mid >= lo.max(hi) {
+            mid = 0.5 * (lo + hi);
+        }
+        let f_mid = residual(mid)?;
+        last = mid;
+        if f_mid.abs() <= LOAD_TOLERANCE * load {
+            return Ok(Balanced {
+                lowering: mid,
+                evaluated: true,
+            });
+        }
+        if (f_mid > 0.0) == (f_hi > 0.0) {
+            hi = mid;
+            f_hi = f_mid;
+            if kept == -1 {
+                f_lo *= 0.5;
+            }
+            kept = -1;
+        } else {
+            lo = mid;
+            f_lo = f_mid;
+            if kept == 1 {
+                f_hi *= 0.5;
+            }
+            kept = 1;
+        }
+    }
+    let best = if f_lo.abs() < f_hi.abs() { lo } else { hi };
+    Ok(Balanced {
+        lowering: best,
+        evaluated: best == last,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hertzian_force_is_balanced() {
+        // F = k (dz − touch)^{3/2}: the root is known in closed form.
+        let (k, touch, load): (f64, f64, f64) = (1e10, -2e-4, 8e4);
+        let exact = touch + (load / k).powf(2.0 / 3.0);
+        let b = balance(touch, 1e-5, load, 60, |dz| {
+            Ok::<_, ()>(k * (dz - touch).max(0.0).powf(1.5) - load)
+        })
+        .unwrap();
+        assert!(b.evaluated);
+        assert!((b.lowering - exact).abs() < 1e-9 * exact.abs());
+    }
+
+    #[test]
+    fn a_jump_across_the_load_gives_the_nearer_bracket_end() {
+        // F jumps from 0.9 load to 1.2 load at dz = 1e−4: no exact root; the end with the
+        // smaller residual (0.1 load below the jump) is returned.
+        let load = 1e4;
+        let b = balance(0.0, 1e-5, load, 60, |dz| {
+            Ok::<_, ()>(
+                if dz < 1e-4 {
+                    0.9 * load * dz / 1e-4
+                } else {
+                    1.2 * load
+                } - load,
+            )
+        })
+        .unwrap();
+        assert!((b.lowering - 1e-4).abs() < 1e-12, "{b:?}");
+    }
+
+    #[test]
+    fn residual_errors_are_passed_on() {
+        assert_eq!(
+            balance(0.0, 1e-5, 1.0, 10, |_| Err::<f64, _>("bad")),
+            Err("bad")
+        );
+    }
+}
