@@ -108,7 +108,7 @@ impl Analyn {
 
 impl StripModel for Analyn {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
-        let n = geom.n.min(MAX_STRIPS);
+        let n = geom.len();
         let b_min = params.b_floor();
         self.n = n;
         for i in 0..n {
@@ -145,11 +145,9 @@ impl StripModel for Analyn {
         delta: f64,
         out: &mut StripSolution,
     ) -> f64 {
-        let n = geom.n.min(MAX_STRIPS);
-        out.reset(n);
-        if !(delta > 0.0 && delta.is_finite() && geom.ds > 0.0 && geom.ds.is_finite()) {
+        let Some(n) = out.begin(geom, delta, params.e_star) else {
             return 0.0;
-        }
+        };
         for i in 0..n.min(self.n) {
             if !self.active[i] {
                 continue;

@@ -422,20 +422,11 @@ impl StripModel for KikPiotrowski {
         delta: f64,
         out: &mut StripSolution,
     ) -> f64 {
-        let n = geom.n.min(MAX_STRIPS);
-        out.reset(n);
         let e_star = params.e_star;
         let ds = geom.ds;
-        if !(n > 0
-            && delta > 0.0
-            && delta.is_finite()
-            && ds > 0.0
-            && ds.is_finite()
-            && e_star > 0.0
-            && e_star.is_finite())
-        {
+        let Some(n) = out.begin(geom, delta, e_star) else {
             return 0.0;
-        }
+        };
         let penetration = self.epsilon * delta;
         let stretch = if params.kp_shape_correction {
             shape_stretch(geom, n, params, table)

@@ -319,18 +319,10 @@ impl StripModel for Linder {
         delta: f64,
         out: &mut StripSolution,
     ) -> f64 {
-        let n = geom.n.min(MAX_STRIPS);
-        out.reset(n);
         let e_star = params.e_star;
-        if !(delta > 0.0
-            && delta.is_finite()
-            && geom.ds > 0.0
-            && geom.ds.is_finite()
-            && e_star > 0.0
-            && e_star.is_finite())
-        {
+        let Some(n) = out.begin(geom, delta, e_star) else {
             return 0.0;
-        }
+        };
         let penetration = LINDER_EPSILON * delta;
         for i in 0..n {
             self.margin[i] = penetration - geom.f[i];

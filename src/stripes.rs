@@ -117,11 +117,6 @@ fn valid_curvature(curv: f64) -> bool {
     curv.is_finite() && curv > 0.0
 }
 
-/// Number of strips used from `geom` (≤ [`MAX_STRIPS`]).
-fn strip_count(geom: &StripGeometry) -> usize {
-    geom.n.min(MAX_STRIPS)
-}
-
 /// Half window m (in strips) of the S0 filter: the window |j − i| ≤ m spans the fraction
 /// `fraction` of the `n` strips (m = ⌊fraction·n/2⌋; 0 = no smoothing).
 fn smoothing_half_window(fraction: f64, n: usize) -> usize {
@@ -297,11 +292,9 @@ impl CorrectedStrips {
 
     /// S4–S6 at approach δ: writes `out` and returns N.
     fn solve(&self, geom: &StripGeometry, e_star: f64, delta: f64, out: &mut StripSolution) -> f64 {
-        let n = strip_count(geom);
-        out.reset(n);
-        if !(delta > 0.0 && delta.is_finite() && geom.ds > 0.0 && geom.ds.is_finite()) {
+        let Some(n) = out.begin(geom, delta, e_star) else {
             return 0.0;
-        }
+        };
         for i in 0..n.min(self.n) {
             if !self.active[i] {
                 continue;
@@ -356,7 +349,7 @@ impl StripesB {
 
 impl StripModel for StripesB {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
-        let n = strip_count(geom);
+        let n = geom.len();
         let b_min = params.b_floor();
         let st = &mut self.strips;
         st.n = n;
@@ -432,7 +425,7 @@ impl StripesAB {
 
 impl StripModel for StripesAB {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
-        let n = strip_count(geom);
+        let n = geom.len();
         let b_min = params.b_floor();
         let st = &mut self.strips;
         st.n = n;

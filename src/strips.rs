@@ -87,6 +87,16 @@ impl StripGeometry {
         g
     }
 
+    /// Number of strips in use, never more than [`MAX_STRIPS`] (the fields are public, so a
+    /// model must not trust `n` alone).
+    pub fn len(&self) -> usize {
+        self.n.min(MAX_STRIPS)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
     /// Index of the strip whose extent contains s = 0 (the first-contact point), if any.
     pub fn strip_at_origin(&self) -> Option<usize> {
         (0..self.n).find(|&i| (self.s[i] - 0.5 * self.ds) <= 0.0 && 0.0 < self.s[i] + 0.5 * self.ds)
@@ -117,6 +127,17 @@ impl Default for StripSolution {
 }
 
 impl StripSolution {
+    /// Starts a model's solve on `geom` at approach `delta` [m] with contact modulus `e_star`
+    /// [Pa]: clears the solution's strips and returns their count, or `None` when there is
+    /// nothing to solve (no strips, or δ, Δs or E* not finite and positive) — the solution then
+    /// stays empty and the model's normal force is zero.
+    pub fn begin(&mut self, geom: &StripGeometry, delta: f64, e_star: f64) -> Option<usize> {
+        let n = geom.len();
+        self.reset(n);
+        let positive = |v: f64| v > 0.0 && v.is_finite();
+        (n > 0 && positive(delta) && positive(geom.ds) && positive(e_star)).then_some(n)
+    }
+
     /// Clears the first `n` strips and sets the count.
     pub fn reset(&mut self, n: usize) {
         self.n = n;
