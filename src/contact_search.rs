@@ -628,11 +628,6 @@ impl WheelOnRail {
         plane
     }
 
-    /// In-plane coordinate s of the rail point at fractional sample index `at` [m].
-    pub fn plane_coordinate_at(&self, plane: &ContactPlane, at: f64) -> f64 {
-        self.plane_coordinate_of(plane, self.lateral_at(at))
-    }
-
     /// In-plane coordinate s of the rail point at wheelset-frame lateral `w` [m].
     pub fn plane_coordinate_of(&self, plane: &ContactPlane, w: f64) -> f64 {
         let (z, _) = self.rail_at(w, &self.pose);

@@ -189,6 +189,11 @@ pub struct PatchSummary {
 }
 
 impl PatchSummary {
+    /// Whether the patch carries load: a positive normal force on strips of positive area.
+    pub fn in_contact(&self) -> bool {
+        self.normal_force > 0.0 && self.area > 0.0 && self.width > 0.0
+    }
+
     /// Reduces `sol` on `geom`.
     pub fn of(geom: &StripGeometry, sol: &StripSolution) -> Self {
         let mut out = Self::default();

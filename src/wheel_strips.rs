@@ -51,6 +51,32 @@ impl StripPatch {
         })
     }
 
+    /// Sets the patch up on the contact plane at `origin` = (lateral w0, lift) (see
+    /// [`WheelOnRail::contact_plane`]) with strips between the rail points at the laterals
+    /// `ends` (either order), and prepares its model.
+    fn set_up(
+        &mut self,
+        geometry: &WheelOnRail,
+        (w0, lift): (f64, f64),
+        ends: (f64, f64),
+        settings: &StripSettings,
+        table: &HertzShapeTable,
+    ) {
+        let plane = geometry.contact_plane(w0, lift);
+        let s_a = geometry.plane_coordinate_of(&plane, ends.0);
+        let s_b = geometry.plane_coordinate_of(&plane, ends.1);
+        self.plane = plane;
+        geometry.strip_geometry(
+            &plane,
+            s_a.min(s_b),
+            s_a.max(s_b),
+            settings.strips,
+            &mut self.geom,
+            &mut self.points,
+        );
+        self.model.prepare(&self.geom, &settings.params, table);
+    }
+
     /// Normal force at wheel lowering `dz` [N] (writes the solution).
     fn solve(&mut self, dz: f64, params: &NormalParams, table: &HertzShapeTable) -> f64 {
         let delta = self.plane.approach(dz);
@@ -106,6 +132,16 @@ const RANGE_FACTOR: f64 = 2.0;
 /// Range widenings before giving up on containing a patch (each doubles the trial approach).
 const RANGE_RETRIES: usize = 4;
 
+/// The deepest contact candidate with its lateral in [w_min, w_max]: (lateral, vertical gap).
+fn deepest_candidate(candidates: &ContactCandidates, w_min: f64, w_max: f64) -> Option<(f64, f64)> {
+    candidates
+        .as_slice()
+        .iter()
+        .filter(|c| (w_min..=w_max).contains(&c.lateral))
+        .min_by(|a, b| a.gap.total_cmp(&b.gap))
+        .map(|c| (c.lateral, c.gap))
+}
+
 impl StripSide {
     /// Buffers for `model`; `None` for Hertz.
     pub fn new(model: NormalModel) -> Option<Self> {
@@ -154,32 +190,16 @@ impl StripSide {
             let w_first = geometry.lateral_at(region.first as f64);
             let w_last = geometry.lateral_at(region.last as f64);
             // The deepest candidate inside the region is its first-contact point.
-            let (w0, lift) = candidates
-                .as_slice()
-                .iter()
-                .filter(|c| (w_first..=w_last).contains(&c.lateral))
-                .min_by(|a, b| a.gap.total_cmp(&b.gap))
-                .map_or_else(
-                    || {
-                        let p = geometry.point_at(region.deepest as f64);
-                        (p.lateral, p.gap)
-                    },
-                    |c| (c.lateral, c.gap),
-                );
-            let plane = geometry.contact_plane(w0, lift);
-            let s_a = geometry.plane_coordinate_at(&plane, region.first as f64 - 1.0);
-            let s_b = geometry.plane_coordinate_at(&plane, region.last as f64 + 1.0);
-            let patch = &mut self.patches[self.count];
-            patch.plane = plane;
-            geometry.strip_geometry(
-                &plane,
-                s_a.min(s_b),
-                s_a.max(s_b),
-                settings.strips,
-                &mut patch.geom,
-                &mut patch.points,
+            let origin = deepest_candidate(candidates, w_first, w_last).unwrap_or_else(|| {
+                let p = geometry.point_at(region.deepest as f64);
+                (p.lateral, p.gap)
+            });
+            // Strips over the region and one sample beyond each end.
+            let ends = (
+                geometry.lateral_at(region.first as f64 - 1.0),
+                geometry.lateral_at(region.last as f64 + 1.0),
             );
-            patch.model.prepare(&patch.geom, &settings.params, table);
+            self.patches[self.count].set_up(geometry, origin, ends, settings, table);
             self.count += 1;
         }
     }
@@ -197,7 +217,7 @@ impl StripSide {
         let mut contained = true;
         for k in 0..self.count {
             let old = &self.patches[k];
-            let n = old.geom.n;
+            let n = old.geom.len();
             // Runs from the field side (largest s) to the gauge side, as the regions come.
             let mut i = n;
             while i > 0 && count < MAX_PATCHES {
@@ -222,32 +242,11 @@ impl StripSide {
                     .unwrap_or(first);
                 // The candidate inside the run, else the run's lowest strip (its gap relative
                 // to the old origin gives the lift).
-                let (w0, lift) = candidates
-                    .as_slice()
-                    .iter()
-                    .filter(|c| (w_min..=w_max).contains(&c.lateral))
-                    .min_by(|a, b| a.gap.total_cmp(&b.gap))
-                    .map_or(
-                        (
-                            old.points.lateral[origin],
-                            old.plane.lift + old.geom.f[origin] / old.plane.gamma.cos(),
-                        ),
-                        |c| (c.lateral, c.gap),
-                    );
-                let plane = geometry.contact_plane(w0, lift);
-                let s_lo = geometry.plane_coordinate_of(&plane, w_min);
-                let s_hi = geometry.plane_coordinate_of(&plane, w_max);
-                let new = &mut self.spare[count];
-                new.plane = plane;
-                geometry.strip_geometry(
-                    &plane,
-                    s_lo.min(s_hi),
-                    s_lo.max(s_hi),
-                    settings.strips,
-                    &mut new.geom,
-                    &mut new.points,
-                );
-                new.model.prepare(&new.geom, &settings.params, table);
+                let origin = deepest_candidate(candidates, w_min, w_max).unwrap_or((
+                    old.points.lateral[origin],
+                    old.plane.lift + old.geom.f[origin] / old.plane.gamma.cos(),
+                ));
+                self.spare[count].set_up(geometry, origin, (w_lo, w_hi), settings, table);
                 count += 1;
             }
         }

@@ -294,8 +294,8 @@ impl Wheelset {
         }
     }
 
-    /// The strip patches of one wheel after the last solve (empty for Hertz). Those with a
-    /// positive normal force are the wheel's patches, in the same order.
+    /// The strip patches of one wheel after the last solve (empty for Hertz). Those whose
+    /// [`crate::strips::PatchSummary::in_contact`] holds are the wheel's patches, in the same order.
     pub fn strip_patches(&self, right: bool) -> &[crate::wheel_strips::StripPatch] {
         let side = if right { &self.right } else { &self.left };
         side.strips.as_ref().map_or(&[], |s| s.patches())
@@ -535,7 +535,7 @@ fn evaluate_strips(
     let mut status = Ok(());
     for patch in strips.patches() {
         let summary = patch.summary();
-        if !(summary.normal_force > 0.0 && summary.area > 0.0 && summary.width > 0.0) {
+        if !summary.in_contact() {
             continue;
         }
         let sc = summary.s_centroid;

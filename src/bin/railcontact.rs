@@ -419,7 +419,7 @@ fn solve(case: Option<&str>, grid: Option<usize>) -> Result<String, Failure> {
         let mut model_strips = wheelset
             .strip_patches(right)
             .iter()
-            .filter(|p| p.summary().normal_force > 0.0);
+            .filter(|p| p.summary().in_contact());
         for (k, patch) in result.patches[..result.n_patches].iter().enumerate() {
             let table = match model_strips.next() {
                 Some(sp) => patch_strips(sp),
