@@ -12,31 +12,19 @@
 //! CONTACT's right-rail coordinate, docs/conventions.md). `cargo test --test central --
 //! --nocapture` prints the tables.
 
-use std::path::{Path, PathBuf};
+mod common;
 
 use railcontact::point_contact::Material;
-use railcontact::profile::{Profile, ProfileKind};
 use railcontact::strips::NormalModel;
-use railcontact::track::TrackSetup;
 use railcontact::wheelset::{
-    Creepages, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
+    Creepages, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
 };
+
+use common::{benchmark_wheelset, shared_file};
 
 const MM: f64 = 1e-3;
 const Q: f64 = 78_500.0;
 const VX: f64 = 2.0;
-
-fn shared_dir() -> PathBuf {
-    std::env::var_os("RAILCONTACT_SHARED")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"))
-}
-
-fn shared_file(relative: &str) -> PathBuf {
-    let p = shared_dir().join(relative);
-    assert!(p.is_file(), "missing shared data file {}", p.display());
-    p
-}
 
 /// Rows of a reference CSV file as (header → value) maps.
 fn read_csv(relative: &str) -> Vec<std::collections::HashMap<String, f64>> {
@@ -57,25 +45,12 @@ fn read_csv(relative: &str) -> Vec<std::collections::HashMap<String, f64>> {
 }
 
 fn wheelset(model: NormalModel) -> Wheelset {
-    let load = |file: &str, kind| {
-        let p = shared_file(&format!("profiles/{file}"));
-        Profile::load(p.to_str().unwrap(), kind, 0.0).expect("benchmark profile")
+    let material = Material {
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.28,
+        friction: 0.3,
     };
-    let wheel = load("MBench_S1002_v3.prw", ProfileKind::Wheel);
-    let rail = load("MBench_UIC60_v3.prr", ProfileKind::Rail);
-    let mut settings = WheelsetSettings::new(
-        TrackSetup {
-            rail_inclination: 0.0,
-            ..TrackSetup::default()
-        },
-        Material {
-            youngs_modulus: 210e9,
-            poisson_ratio: 0.28,
-            friction: 0.3,
-        },
-    );
-    settings.normal_model = model;
-    Wheelset::new(&wheel, &rail, settings).expect("benchmark wheelset")
+    benchmark_wheelset(material, model)
 }
 
 fn solve(ws: &mut Wheelset, y: f64) -> WheelsetResult {

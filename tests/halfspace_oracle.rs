@@ -13,18 +13,16 @@
 //! no yaw, right wheel). Known limit of the oracle: one contact plane per wheel (the dominant
 //! patch's); at +5 mm, where tread and flange-root contact coexist, it is approximate.
 
-use std::path::{Path, PathBuf};
+mod common;
 
 use railcontact::contact_search::StripPoints;
 use railcontact::halfspace::{solve_for_load, HalfspaceGrid};
 use railcontact::hertz::contact_modulus;
 use railcontact::point_contact::Material;
-use railcontact::profile::{Profile, ProfileKind};
 use railcontact::strips::{NormalModel, StripGeometry};
-use railcontact::track::TrackSetup;
-use railcontact::wheelset::{
-    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
-};
+use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult};
+
+use common::benchmark_wheelset;
 
 const Q: f64 = 78_500.0;
 const E: f64 = 210e9;
@@ -32,38 +30,13 @@ const NU: f64 = 0.28;
 /// Element size of the oracle, as CONTACT's reference [m].
 const ELEMENT: f64 = 0.2e-3;
 
-fn shared_file(relative: &str) -> PathBuf {
-    let root = std::env::var_os("RAILCONTACT_SHARED")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"));
-    let p = root.join(relative);
-    assert!(p.is_file(), "missing shared data file {}", p.display());
-    p
-}
-
 fn wheelset(model: NormalModel) -> Wheelset {
-    let load = |file: &str, kind| {
-        let p = shared_file(&format!("profiles/{file}"));
-        Profile::load(p.to_str().unwrap(), kind, 0.0).expect("benchmark profile")
+    let material = Material {
+        youngs_modulus: E,
+        poisson_ratio: NU,
+        friction: 0.3,
     };
-    let mut settings = WheelsetSettings::new(
-        TrackSetup {
-            rail_inclination: 0.0,
-            ..TrackSetup::default()
-        },
-        Material {
-            youngs_modulus: E,
-            poisson_ratio: NU,
-            friction: 0.3,
-        },
-    );
-    settings.normal_model = model;
-    Wheelset::new(
-        &load("MBench_S1002_v3.prw", ProfileKind::Wheel),
-        &load("MBench_UIC60_v3.prr", ProfileKind::Rail),
-        settings,
-    )
-    .expect("benchmark wheelset")
+    benchmark_wheelset(material, model)
 }
 
 /// (area [m²], pmax [Pa]) of the model's right wheel and of the exact solution on the dominant

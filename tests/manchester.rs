@@ -37,17 +37,17 @@
 //! missing files fail the tests (never skipped). `cargo test --test manchester -- --nocapture`
 //! prints the comparison tables.
 
-use std::path::{Path, PathBuf};
+mod common;
+
 use std::sync::OnceLock;
 
 use railcontact::point_contact::Material;
-use railcontact::profile::{Profile, ProfileKind};
 use railcontact::strips::NormalModel;
-use railcontact::track::TrackSetup;
 use railcontact::wheelset::{
     Creepages, PatchResult, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
-    WheelsetSettings,
 };
+
+use common::shared_file;
 
 const MM: f64 = 1000.0;
 /// Prescribed vertical load per wheel [N].
@@ -69,32 +69,6 @@ const FLANGE_MIN_ANGLE: f64 = 0.6;
 
 // ---------------------------------------------------------------------------------------------
 // Reference data
-
-fn shared_dir() -> PathBuf {
-    std::env::var_os("RAILCONTACT_SHARED")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"))
-}
-
-/// A file of the shared data; fails (never skips) when it is missing.
-fn shared_file(relative: &str) -> PathBuf {
-    let dir = shared_dir();
-    let p = dir.join(relative);
-    assert!(
-        p.is_file(),
-        "Manchester benchmark file {} not found (shared data directory {} — from {}). These tests \
-         are the acceptance of the wheelset geometry and must not be skipped: set \
-         RAILCONTACT_SHARED to the directory holding profiles/ and reference/manchester/.",
-        p.display(),
-        dir.display(),
-        if std::env::var_os("RAILCONTACT_SHARED").is_some() {
-            "$RAILCONTACT_SHARED"
-        } else {
-            "the default CARGO_MANIFEST_DIR/../shared"
-        }
-    );
-    p
-}
 
 /// One row of `summary_{left,right}.csv`.
 #[derive(Debug, Clone, Copy)]
@@ -205,33 +179,12 @@ fn benchmark_wheelset() -> Wheelset {
 }
 
 fn benchmark_wheelset_with(model: NormalModel) -> Wheelset {
-    let load = |file: &str, kind| {
-        let p = shared_file(&format!("profiles/{file}"));
-        Profile::load(p.to_str().unwrap(), kind, 0.0)
-            .unwrap_or_else(|e| panic!("loading {}: {e}", p.display()))
+    let material = Material {
+        youngs_modulus: 2.0 * G * (1.0 + NU),
+        poisson_ratio: NU,
+        friction: MU,
     };
-    let wheel = load("MBench_S1002_v3.prw", ProfileKind::Wheel);
-    let rail = load("MBench_UIC60_v3.prr", ProfileKind::Rail);
-    let settings = WheelsetSettings::new(
-        TrackSetup {
-            rail_inclination: 0.0,
-            track_gauge: 1.435,
-            gauge_depth: 0.014,
-            flange_back_distance: 1.360,
-            flange_back_position: -0.070,
-            wheel_radius: 0.46,
-        },
-        Material {
-            youngs_modulus: 2.0 * G * (1.0 + NU),
-            poisson_ratio: NU,
-            friction: MU,
-        },
-    );
-    let settings = WheelsetSettings {
-        normal_model: model,
-        ..settings
-    };
-    Wheelset::new(&wheel, &rail, settings).expect("benchmark wheelset")
+    common::benchmark_wheelset(material, model)
 }
 
 fn input(pose: &Pose, roll_sign: f64) -> WheelsetInput {

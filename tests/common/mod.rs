@@ -1,0 +1,62 @@
+//! Shared set-up of the integration tests that use `../shared`: the data directory and the
+//! benchmark wheelset (physics.md §8.5; reference/README.md).
+
+use std::path::{Path, PathBuf};
+
+use railcontact::point_contact::Material;
+use railcontact::profile::{Profile, ProfileKind};
+use railcontact::strips::NormalModel;
+use railcontact::track::TrackSetup;
+use railcontact::wheelset::{Wheelset, WheelsetSettings};
+
+/// `$RAILCONTACT_SHARED`, or else `../shared` next to the crate.
+pub fn shared_dir() -> PathBuf {
+    std::env::var_os("RAILCONTACT_SHARED")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"))
+}
+
+/// A file of the shared data; fails (never skips) when it is missing.
+pub fn shared_file(relative: &str) -> PathBuf {
+    let dir = shared_dir();
+    let p = dir.join(relative);
+    assert!(
+        p.is_file(),
+        "shared data file {} not found (shared data directory {} — from {}). These tests are \
+         acceptance tests and must not be skipped: set RAILCONTACT_SHARED to the directory \
+         holding profiles/ and reference/.",
+        p.display(),
+        dir.display(),
+        if std::env::var_os("RAILCONTACT_SHARED").is_some() {
+            "$RAILCONTACT_SHARED"
+        } else {
+            "the default CARGO_MANIFEST_DIR/../shared"
+        }
+    );
+    p
+}
+
+/// The benchmark wheelset: `MBench_S1002_v3.prw` on `MBench_UIC60_v3.prr` (rail already inclined
+/// 1:40 in the file, so `rail_inclination = 0`), gauge 1435 mm at 14 mm, flange-back distance
+/// 1360 mm, nominal radius 460 mm, with the given material and normal model.
+pub fn benchmark_wheelset(material: Material, model: NormalModel) -> Wheelset {
+    let load = |file: &str, kind| {
+        let p = shared_file(&format!("profiles/{file}"));
+        Profile::load(p.to_str().unwrap(), kind, 0.0)
+            .unwrap_or_else(|e| panic!("loading {}: {e}", p.display()))
+    };
+    let setup = TrackSetup {
+        rail_inclination: 0.0,
+        ..TrackSetup::default()
+    };
+    let settings = WheelsetSettings {
+        normal_model: model,
+        ..WheelsetSettings::new(setup, material)
+    };
+    Wheelset::new(
+        &load("MBench_S1002_v3.prw", ProfileKind::Wheel),
+        &load("MBench_UIC60_v3.prr", ProfileKind::Rail),
+        settings,
+    )
+    .expect("benchmark wheelset")
+}
