@@ -280,21 +280,28 @@ impl StripSide {
             self.build_from_regions(geometry, candidates, dz_range, settings, table);
             dz = match target {
                 Some(q) => self.iterate(q, touch, dz_range, &params, table),
-                None => dz_hint,
+                None => {
+                    self.vertical_force(dz_hint, &params, table);
+                    dz_hint
+                }
             };
-            self.vertical_force(dz, &params, table);
             let contained = self.restrip(geometry, candidates, settings, table);
             if contained || target.is_none() {
                 break;
             }
             approach *= 2.0;
         }
-        if let Some(q) = target {
-            let hi = touch + RANGE_FACTOR * (dz - touch).max(approach);
-            dz = self.iterate(q, touch, hi, &params, table);
+        // The re-striped patches are solved afresh.
+        match target {
+            Some(q) => {
+                let hi = touch + RANGE_FACTOR * (dz - touch).max(approach);
+                self.iterate(q, touch, hi, &params, table)
+            }
+            None => {
+                self.vertical_force(dz, &params, table);
+                dz
+            }
         }
-        self.vertical_force(dz, &params, table);
-        dz
     }
 
     /// Re-solves the lowering for a new vertical force `target` [N] > 0 on the current patches
@@ -308,15 +315,12 @@ impl StripSide {
         touch: f64,
         dz: f64,
     ) -> f64 {
-        let params = settings.params;
         let hi = touch + RANGE_FACTOR * (dz - touch).max(0.0);
-        let dz = self.iterate(target, touch, hi, &params, table);
-        self.vertical_force(dz, &params, table);
-        dz
+        self.iterate(target, touch, hi, &settings.params, table)
     }
 
     /// The lowering at which the vertical force equals `q` > 0 ([`balance`], first trial at
-    /// `hi`).
+    /// `hi`); the patches' solutions are left at that lowering.
     fn iterate(
         &mut self,
         q: f64,
@@ -329,6 +333,9 @@ impl StripSide {
         let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, |dz| {
             Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q)
         });
+        if !balanced.evaluated {
+            self.vertical_force(balanced.lowering, params, table);
+        }
         balanced.lowering
     }
 }
