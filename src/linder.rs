@@ -18,17 +18,19 @@
 //! * **§5.3 [R]** each connected run of strips in contact is one virtual patch with lateral
 //!   semi-axis b_L = (y_max − y_min)/2 and centre y_c = (y_max + y_min)/2. Strip j gets the local
 //!   ellipse (a_j, b_L) through its ends: a_j = x_l,j/√(1 − ζ_j²), ζ_j = (s_j − y_c)/b_L, capped
-//!   (below). Its peak p0_j is the Hertz peak of the ellipse (a_j, b_L) for the curvature A_j
-//!   ([`hertz_peak_from_curvature`], the A-based relation of physics.md §2.4), and the strip carries
+//!   (below). Its peak p0_j is the Hertz peak of the ellipse (a_j, b_L) from the curvature along
+//!   its **longer** semi-axis (choice, "Peak rule" below): A_j if a_j ≥ b_L, else
+//!   B_j = A_j a_j²/b_L² (the lateral curvature for which (a_j, b_L) is a virtual ellipse), by the
+//!   curvature relation of physics.md §2.4 ([`hertz_peak_from_curvature`]). The strip carries
 //!   p_j(x) = p0_j √(1 − ζ_j²) √(1 − (x − x_c,j)²/x_l,j²), i.e. strip peak p0_j √(1 − ζ_j²).
 //! * **V1** N = Σ (π/2) p_j x_l,j Δs ([`StripSolution::set`]). The δ iteration for a prescribed
 //!   load (V2) is the caller's.
 //!
 //! On a Hertz gap f = B s², A constant, every local ellipse is the virtual ellipse
-//! a_v = √(εδ/A), b_v = √(εδ/B) and the pressure is the semi-ellipsoid of peak
-//! p0(a_v, b_v; A) — exactly, because of the edge rule below. At equal δ this gives
-//! p0/p0_H = 1.049, 0.904, 0.759, 1.186 and N/N_H = 1.154, 1.010, 0.888, 1.326 for
-//! A/B = 1, 1/3, 1/10, 3 (physics.md §5.3 table; tested).
+//! a_v = √(εδ/A), b_v = √(εδ/B) and the pressure is the semi-ellipsoid of peak p0(a_v, b_v) —
+//! exactly, because of the edge rule below. At equal δ this gives p0/p0_H = 1.049, 0.904, 0.759
+//! and N/N_H = 1.154, 1.010, 0.888 for A/B = 1, 1/3, 1/10 (physics.md §5.3 table; tested), and the
+//! same for A/B = 3 and 10 (the turned ellipses).
 //!
 //! # Choices where the brief leaves the reading open
 //!
@@ -42,6 +44,19 @@
 //!   between them. Where there is no out-of-contact neighbour to interpolate with (the run reaches
 //!   the end of the strip set, or the neighbour is out of contact because its A or f is not usable)
 //!   the edge is the strip's outer edge s ± Δs/2.
+//! * **Peak rule [R → choice]:** a virtual ellipse is not the Hertz ellipse of its curvatures
+//!   (ε = 0.55 on both axes, Hertz has ε_x ≠ ε_y), so the Hertz relations from A and from B give
+//!   different peaks, and the brief's reading (from A, §2.4) is one of them. Taken from A alone
+//!   the model is asymmetric: for A > B (b > a, a wide patch — the seed's own central case, where
+//!   A/B ≈ 3 at the first-contact point) it gives a *smaller* patch and a *higher* peak than
+//!   Hertz at equal load (A/B = 3: area −7.4 %, peak +8.0 %), the opposite of what the seed
+//!   reports for Linder against CONTACT on S1002/UIC60 ("patch too large, pressure too low"),
+//!   and its central-case patch came out smaller than Kik–Piotrowski's, against the seed. The
+//!   relation of the longer axis is the brief's reading wherever a ≥ b and its 90°-turned mirror
+//!   where a < b: the model becomes symmetric in A/B, and at equal load its patch is never smaller
+//!   and its peak never higher than Hertz (A/B = 1/3 or 3: area +11.0 %, peak −9.9 %; A/B = 0.1
+//!   or 10: +26.6 %, −21.0 %; tested). The two relations coincide on the circle, so p0 is
+//!   continuous where a_j crosses b_L.
 //! * **Cap of a_j:** a_j ≤ L, L the patch half-length (largest x_l of the run, refined by the
 //!   parabola through x_l² = (εδ − f)/A at the longest strip and its neighbours; exact on a Hertz
 //!   gap). A local ellipse is never longer than the patch. On a Hertz gap a_j = L = a_v for every
@@ -59,13 +74,9 @@
 //! # Known limits
 //!
 //! * The model is not Hertz-exact: ε = 0.55 makes the patch of a Hertz gap √(0.55/ε_x) times
-//!   longer and √(0.55/ε_y) times wider than Hertz. At equal load (tested): for A < B (a > b, the
-//!   usual tread contact) the area is larger and the peak lower than Hertz (A/B = 1/3: area
-//!   +11.0 %, peak −9.9 %; A/B = 0.1: +26.6 %, −21.0 %), as the seed saw against CONTACT; the
-//!   circle is exactly Hertz (N ∝ a_v³ with Hertz's constant); for A > B it is the other way round
-//!   (A/B = 3: area −7.4 %, peak +8.0 %). The asymmetry comes from taking the peak from A alone:
-//!   the virtual ellipse is not Hertzian for its curvatures, and a B-based peak would mirror the
-//!   A/B = 1/3 figures at A/B = 3.
+//!   longer and √(0.55/ε_y) times wider than Hertz. At equal load the area is larger and the peak
+//!   lower than Hertz for every A/B ≠ 1 (figures in "Peak rule"); the circle is exactly Hertz
+//!   (N ∝ a_v³ with Hertz's constant).
 //! * N(δ) is continuous and non-decreasing while strips enter a run (a strip enters with
 //!   x_l = 0; on a Hertz gap the edge rule is exact), up to small steps where the parabolic edge
 //!   estimate of a non-quadratic gap changes as a strip enters (≤ 0.2 % per 0.5 % of δ in the
@@ -124,6 +135,21 @@ pub fn hertz_peak_from_curvature(semi_x: f64, semi_y: f64, curv_a: f64, e_star: 
         e_star * curv_a * semi_x * semi_x * e2 / (semi_y * ell.k_minus_e)
     } else {
         e_star * curv_a * semi_x * e2 / (e2 * ell.k - ell.k_minus_e)
+    }
+}
+
+/// Peak p0 [Pa] of strip j's local ellipse (a_j = `semi_x`, b_L = `semi_y`) with strip curvature
+/// A_j = `curv_a`: the Hertz relation of the curvature **along the ellipse's longer semi-axis**
+/// (module docs, "Peak rule"). a_j ≥ b_L: from A_j; a_j < b_L: from the lateral curvature
+/// B_j = A_j a_j²/b_L² that makes (a_j, b_L) a virtual ellipse (A_j a_j² = B_j b_L² = εδ; on a
+/// Hertz gap B_j = B), by [`hertz_peak_from_curvature`] with the axes swapped. Both relations
+/// agree on the circle, so p0 is continuous where a_j crosses b_L.
+fn local_peak(semi_x: f64, semi_y: f64, curv_a: f64, e_star: f64) -> f64 {
+    if semi_x >= semi_y {
+        hertz_peak_from_curvature(semi_x, semi_y, curv_a, e_star)
+    } else {
+        let curv_b = curv_a * (semi_x / semi_y) * (semi_x / semi_y);
+        hertz_peak_from_curvature(semi_y, semi_x, curv_b, e_star)
     }
 }
 
@@ -301,7 +327,7 @@ impl Linder {
             let zeta = (geom.s[j] - ellipse.centre) / ellipse.half_width;
             let w = (1.0 - zeta * zeta).clamp(0.0, 1.0);
             let semi_x = local_semi_axis(half_length, w, ellipse.half_length);
-            let p0 = hertz_peak_from_curvature(semi_x, ellipse.half_width, curv_a, e_star);
+            let p0 = local_peak(semi_x, ellipse.half_width, curv_a, e_star);
             out.set(j, half_length, p0 * w.sqrt(), geom.ds);
         }
     }
@@ -457,7 +483,8 @@ mod tests {
 
     #[test]
     fn hertz_gap_gives_the_virtual_ellipse() {
-        // Patch √(0.55δ/A) × √(0.55δ/B) and the semi-ellipsoid of peak p0(a_v, b_v; A).
+        // Patch √(0.55δ/A) × √(0.55δ/B) and the semi-ellipsoid of the peak of the virtual
+        // ellipse from the curvature along its longer axis.
         // Tolerances: the edge rule is exact on a quadratic gap, so every strip's a_j = a_v and
         // the strip pressures match the semi-ellipsoid to round-off (1e−9). The summary's length
         // samples x_l at the strip centre nearest y = 0: relative error ≤ (Δs/2b_v)²/2; its width
@@ -468,7 +495,7 @@ mod tests {
             let (sol, n) = run(&geom, DELTA);
             no_nan(&sol, n);
             let (a_v, b_v) = virtual_axes(curv_a, CURV_B, DELTA);
-            let p0 = hertz_peak_from_curvature(a_v, b_v, curv_a, NormalParams::default().e_star);
+            let p0 = local_peak(a_v, b_v, curv_a, NormalParams::default().e_star);
             let sum = PatchSummary::of(&geom, &sol);
             let mut profile: f64 = 0.0;
             for i in 0..geom.n {
@@ -501,7 +528,10 @@ mod tests {
             (1.0, 1.049, 1.154),
             (1.0 / 3.0, 0.904, 1.010),
             (0.1, 0.759, 0.888),
-            (3.0, 1.186, 1.326),
+            // The longer-axis peak rule makes the table symmetric in A/B: A/B = 3 is the
+            // A/B = 1/3 case turned by 90°, so the brief's A-based 1.186/1.326 become these.
+            (3.0, 0.904, 1.010),
+            (10.0, 0.759, 0.888),
         ];
         for (ratio, p0_ratio, n_ratio) in cases {
             let curv_a = ratio * CURV_B;
@@ -525,8 +555,15 @@ mod tests {
         // At the Hertz load of δ = 50 µm, V2 on the Linder solve.
         // A < B (a > b): area larger, peak lower than Hertz (the seed's observation).
         // A = B: Linder is exactly Hertz at equal load (N ∝ a_v³ with Hertz's own constant).
-        // A > B: smaller area and a higher peak (documented limit).
-        for (ratio, larger) in [(1.0 / 3.0, true), (0.1, true), (1.0, false), (3.0, false)] {
+        // A > B (b > a, the wide patch of the seed's central case): the same, by the
+        // longer-axis peak rule.
+        for (ratio, larger) in [
+            (1.0 / 3.0, true),
+            (0.1, true),
+            (1.0, false),
+            (3.0, true),
+            (10.0, true),
+        ] {
             let curv_a = ratio * CURV_B;
             let h = hertz(curv_a, CURV_B, DELTA);
             let delta = approach_for_load(|d| hertz_gap(curv_a, CURV_B, d), h.normal_force, DELTA);

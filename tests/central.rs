@@ -172,9 +172,13 @@ fn central_case_against_the_exact_theory() {
         errors[&NormalModel::StripesAB],
         errors[&NormalModel::Analyn]
     );
-    // The seed: Linder's patch is larger than STRIPES's. (It also reports Linder's above
-    // Kik–Piotrowski's; here Kik–Piotrowski's is the larger one — see docs/validation.md.)
-    for other in [NormalModel::StripesB, NormalModel::StripesAB] {
+    // The acceptance and the seed: Linder's patch is larger than Kik–Piotrowski's and
+    // both STRIPES variants'.
+    for other in [
+        NormalModel::KikPiotrowski,
+        NormalModel::StripesB,
+        NormalModel::StripesAB,
+    ] {
         assert!(
             areas[&NormalModel::Linder] > areas[&other],
             "Linder's area {} is not above {}'s {}",
