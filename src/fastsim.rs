@@ -243,12 +243,18 @@ pub fn blended_flexibilities(
     creepage: &Creepage,
 ) -> [f64; 3] {
     let w = blending_weight(contact, c, creepage);
+    blend_flexibilities(l, contact.a, creepage, w)
+}
+
+/// F4 with a given weight `w` ∈ [0, 1]: L_i ← (1 − w)L_i + w L×, L× from the semi-axis `a` [m]
+/// along x (spin lever f = 3πa/32) and the creepages.
+pub fn blend_flexibilities(l: [f64; 3], a: f64, creepage: &Creepage, w: f64) -> [f64; 3] {
     if w == 0.0 {
         return l;
     }
-    // Spin lever f = 3πa/32 of F4; creepages normalised by their largest magnitude so that the
-    // squares can neither overflow nor underflow.
-    let f = 3.0 * PI * contact.a / 32.0;
+    // Creepages normalised by their largest magnitude so that the squares can neither overflow
+    // nor underflow.
+    let f = 3.0 * PI * a / 32.0;
     let terms = [creepage.xi, creepage.eta, creepage.phi * f];
     let scale = terms.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
     if !(scale > 0.0 && scale.is_finite()) {

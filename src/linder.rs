@@ -329,6 +329,9 @@ impl Linder {
             let semi_x = local_semi_axis(half_length, w, ellipse.half_length);
             let p0 = local_peak(semi_x, ellipse.half_width, curv_a, e_star);
             out.set(j, half_length, p0 * w.sqrt(), geom.ds);
+            if out.half_length[j] > 0.0 {
+                out.local_axes[j] = (semi_x, ellipse.half_width);
+            }
         }
     }
 }

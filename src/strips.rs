@@ -113,6 +113,10 @@ pub struct StripSolution {
     pub pmax: [f64; MAX_STRIPS],
     /// Strip normal force (π/2) p0_i x_l,i Δs [N].
     pub force: [f64; MAX_STRIPS],
+    /// The model's own local ellipse of strip i, semi-axes (along x, across) [m], for the
+    /// tangential problem's strip-wise flexibilities (physics.md §4.8); (0, 0) where the model
+    /// defines none (only Linder sets it: (a_j, b_L)).
+    pub local_axes: [(f64, f64); MAX_STRIPS],
 }
 
 impl Default for StripSolution {
@@ -122,6 +126,7 @@ impl Default for StripSolution {
             half_length: [0.0; MAX_STRIPS],
             pmax: [0.0; MAX_STRIPS],
             force: [0.0; MAX_STRIPS],
+            local_axes: [(0.0, 0.0); MAX_STRIPS],
         }
     }
 }
@@ -144,6 +149,7 @@ impl StripSolution {
         self.half_length[..n].fill(0.0);
         self.pmax[..n].fill(0.0);
         self.force[..n].fill(0.0);
+        self.local_axes[..n].fill((0.0, 0.0));
     }
 
     /// Sets strip `i` to a semi-ellipse of half-length `half_length` and peak `pmax`; strip width

@@ -32,13 +32,17 @@ use crate::error::InputError;
 use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use crate::hertz::{contact_modulus, hertz_from_approach, shear_modulus};
 use crate::load_balance::balance;
+use crate::patch_tangential::{
+    equivalent_ellipse, strip_flexibilities, TangentialMaterial, TangentialModel,
+};
 use crate::point_contact::Material;
 use crate::profile::Profile;
+use crate::strip_fastsim::{StripFastsim, TangentialStrip};
 use crate::strips::{
     HertzShapeTable, NormalModel, NormalParams, DEFAULT_B_SMOOTHING, DEFAULT_STRIPS, MAX_STRIPS,
 };
 use crate::track::{GeometryError, TrackSetup};
-use crate::wheel_strips::{StripSettings, StripSide};
+use crate::wheel_strips::{StripPatch, StripSettings, StripSide};
 
 /// Patches reported per wheel.
 pub const MAX_PATCHES: usize = 3;
@@ -76,6 +80,12 @@ pub struct WheelsetSettings {
     pub b_smoothing: f64,
     /// Kik–Piotrowski area-preserving shape correction.
     pub kp_shape_correction: bool,
+    /// Tangential model on strip patches (Hertz patches always use FASTSIM on their ellipse).
+    pub tangential: TangentialModel,
+    /// Planar treatment of strip patches: one contact angle and one spin for the whole patch
+    /// (as the half-space theory assumes). `false`: each strip its own angle, rolling radius
+    /// and creepages (physics.md §5.9).
+    pub planar_patch: bool,
 }
 
 impl WheelsetSettings {
@@ -91,6 +101,8 @@ impl WheelsetSettings {
             strips: DEFAULT_STRIPS,
             b_smoothing: DEFAULT_B_SMOOTHING,
             kp_shape_correction: false,
+            tangential: TangentialModel::ModelDefault,
+            planar_patch: false,
         }
     }
 }
@@ -163,6 +175,24 @@ pub struct PatchResult {
     pub curv_b: f64,
 }
 
+/// Tangential traction in one element of a patch (forces of the rail on the wheel).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TractionElement {
+    /// Element centre along the rolling direction [m].
+    pub x: f64,
+    /// Lateral coordinate in the contact plane, towards the field side [m].
+    pub s: f64,
+    /// Lateral rail coordinate (mounted rail frame, towards the field side) [m].
+    pub y_rail: f64,
+    /// Traction along x and along the element's lateral axis e_y [Pa].
+    pub px: f64,
+    pub py: f64,
+    /// Normal pressure [Pa].
+    pub pn: f64,
+    /// Whether the element slips.
+    pub slipping: bool,
+}
+
 /// One wheel's result.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SideResult {
@@ -222,6 +252,11 @@ struct Side {
     fastsim: [Fastsim; MAX_PATCHES],
     /// Strip patches of the non-elliptic models (`None` for Hertz).
     strips: Option<StripSide>,
+    /// Tangential solvers of the strip patches (one per reported patch) and the strip buffer.
+    strip_fastsim: Vec<StripFastsim>,
+    tangential_strips: Vec<TangentialStrip>,
+    /// `y_rail` of the Hertz patches of the last evaluation (for their traction field).
+    last_y_rail: [f64; MAX_PATCHES],
 }
 
 /// A wheelset contact solver; owns every buffer, so [`Wheelset::solve`] does not allocate.
@@ -269,6 +304,15 @@ impl Wheelset {
                     Fastsim::new(settings.fastsim)?,
                 ],
                 strips: StripSide::new(settings.normal_model),
+                strip_fastsim: if settings.normal_model == NormalModel::Hertz {
+                    Vec::new()
+                } else {
+                    (0..MAX_PATCHES)
+                        .map(|_| StripFastsim::new(settings.fastsim.nx))
+                        .collect::<Result<_, _>>()?
+                },
+                tangential_strips: vec![TangentialStrip::default(); MAX_STRIPS],
+                last_y_rail: [0.0; MAX_PATCHES],
             })
         };
         Ok(Self {
@@ -301,6 +345,53 @@ impl Wheelset {
         side.strips.as_ref().map_or(&[], |s| s.patches())
     }
 
+    /// The traction field of patch `patch` (0-based, as in [`SideResult::patches`]) of one wheel
+    /// after the last solve, or `None` if there is no such patch. Allocates (on request only).
+    /// Strip patches: every element of every strip in contact, `s` the strip's lateral
+    /// coordinate in its contact plane (towards the field side) and `y_rail` the rail point of
+    /// the strip; Hertz patches: the FASTSIM grid, `s` from the ellipse centre towards the
+    /// field side and `y_rail` = the patch's `y_rail` + `s`.
+    pub fn traction_field(&self, right: bool, patch: usize) -> Option<Vec<TractionElement>> {
+        let side = if right { &self.right } else { &self.left };
+        if let Some(strips) = side.strips.as_ref() {
+            let p = strips
+                .patches()
+                .iter()
+                .filter(|p| p.summary().in_contact())
+                .nth(patch)?;
+            let solver = side.strip_fastsim.get(patch)?;
+            return Some(
+                solver
+                    .tractions()
+                    .map(|e| TractionElement {
+                        x: e.x,
+                        s: p.geom.s[e.strip],
+                        y_rail: p.points.y_rail[e.strip],
+                        px: e.px,
+                        py: e.py,
+                        pn: e.pn,
+                        slipping: e.slipping,
+                    })
+                    .collect(),
+            );
+        }
+        let y_rail = side.last_y_rail.get(patch).copied()?;
+        let solver = side.fastsim.get(patch)?;
+        let field: Vec<_> = solver
+            .tractions()
+            .map(|e| TractionElement {
+                x: e.x,
+                s: side.sigma * e.y,
+                y_rail: y_rail + side.sigma * e.y,
+                px: e.px,
+                py: e.py,
+                pn: e.pn,
+                slipping: e.slipping,
+            })
+            .collect();
+        (!field.is_empty()).then_some(field)
+    }
+
     /// Solves both wheels.
     pub fn solve(
         &mut self,
@@ -323,6 +414,7 @@ impl Wheelset {
                 },
             },
             table: self.table.as_ref(),
+            settings: &self.settings,
         };
         let (q_left, q_right, z) = match input.vertical {
             Vertical::Loads { left, right } => (Some(left), Some(right), 0.0),
@@ -377,6 +469,7 @@ struct Context<'a> {
     material: Material,
     strips: StripSettings,
     table: Option<&'a HertzShapeTable>,
+    settings: &'a WheelsetSettings,
 }
 
 /// Creepages of the wheel relative to the rail at contact point `p` with contact angle `gamma`.
@@ -493,29 +586,56 @@ fn add_patch(
         mu: ctx.material.friction,
     };
     let t = side.fastsim[out.n_patches].solve(&contact, &creepage, speed)?;
+    side.last_y_rail[out.n_patches] = reference.y_rail;
     result.fx = t.fx;
     result.fy = t.fy;
     result.mz = t.mz;
     result.adhesion_fraction = t.adhesion_fraction;
     result.frictional_power = t.frictional_power;
     result.max_traction = t.max_traction;
+    let tangential = planar_tangential(side.sigma, gamma, result.fx, result.fy);
+    Ok(store_patch(side.sigma, result, tangential, out, force))
+}
+
+/// Unit vectors e_y, e_z of the contact axes at contact angle `gamma` on side `sigma` (track
+/// axes; e_x = (1, 0, 0)).
+fn contact_axes(sigma: f64, gamma: f64) -> ([f64; 3], [f64; 3]) {
     let (sin_g, cos_g) = gamma.sin_cos();
-    let s = side.sigma;
-    let e_x = [1.0, 0.0, 0.0];
-    let e_y = [0.0, cos_g, -s * sin_g];
-    let e_z = [0.0, s * sin_g, cos_g];
+    ([0.0, cos_g, -sigma * sin_g], [0.0, sigma * sin_g, cos_g])
+}
+
+/// Track-axes vector of a tangential force (fx, fy) in the contact axes at angle `gamma`.
+fn planar_tangential(sigma: f64, gamma: f64, fx: f64, fy: f64) -> [f64; 3] {
+    let (e_y, _) = contact_axes(sigma, gamma);
+    [fx + fy * e_y[0], fy * e_y[1], fy * e_y[2]]
+}
+
+/// Stores a completed patch `result` in the next slot of `out` and adds its force — the
+/// tangential part `tangential` (track axes) and the normal force along −e_z — to `force`.
+/// Returns its upward force on the wheel [N].
+fn store_patch(
+    sigma: f64,
+    result: PatchResult,
+    tangential: [f64; 3],
+    out: &mut SideResult,
+    force: &mut [f64; 3],
+) -> f64 {
+    let (_, e_z) = contact_axes(sigma, result.contact_angle);
+    let mut total = [0.0; 3];
     for i in 0..3 {
-        force[i] += result.fx * e_x[i] + result.fy * e_y[i] - result.fn_ * e_z[i];
+        total[i] = tangential[i] - result.fn_ * e_z[i];
+        force[i] += total[i];
     }
     out.patches[out.n_patches] = result;
     out.n_patches += 1;
-    Ok(result.fn_ * cos_g + s * result.fy * sin_g)
+    // z points down: the upward force is −F_z.
+    -total[2]
 }
 
 /// Writes the outputs of the strip patches of `side` (solved at lowering `dz`): patch figures
 /// from the strips, reference point at the patch's force centroid (interpolated between strips),
-/// tangential forces by FASTSIM on the equivalent ellipse (same area and length/width ratio,
-/// physics.md §4.8). Returns the upward force on the wheel [N].
+/// tangential forces by the strip solvers of [`crate::strip_fastsim`] (planar or non-planar,
+/// flexibilities per [`TangentialModel`]). Returns the upward force on the wheel [N].
 fn evaluate_strips(
     side: &mut Side,
     ctx: &Context,
@@ -534,39 +654,17 @@ fn evaluate_strips(
     let mut force = [0.0; 3];
     let mut status = Ok(());
     for patch in strips.patches() {
+        if out.n_patches >= MAX_PATCHES {
+            break;
+        }
         let summary = patch.summary();
         if !summary.in_contact() {
             continue;
         }
-        let sc = summary.s_centroid;
-        let at = |v: &[f64]| patch.interpolate(v, sc);
-        let reference = ContactPoint {
-            lateral: at(&patch.points.lateral),
-            longitudinal: at(&patch.geom.x_c),
-            y_rail: at(&patch.points.y_rail),
-            contact_angle: at(&patch.points.contact_angle),
-            rolling_radius: at(&patch.points.rolling_radius),
-            curv_a: at(&patch.geom.curv_a),
-            curv_b: at(&patch.geom.curv_b),
-            ..ContactPoint::default()
-        };
-        let aspect = (summary.length / summary.width).sqrt();
-        let radius = (summary.area / std::f64::consts::PI).sqrt();
-        let result = PatchResult {
-            fn_: summary.normal_force,
-            area: summary.area,
-            pmax: summary.pmax,
-            a: radius * aspect,
-            b: radius / aspect,
-            length: summary.length,
-            width: summary.width,
-            penetration: patch.plane.approach(dz),
-            curv_a: reference.curv_a,
-            curv_b: reference.curv_b,
-            ..PatchResult::default()
-        };
-        match add_patch(side, ctx, input, &reference, result, out, &mut force) {
-            Ok(up) => upward += up,
+        match strip_patch_result(side, ctx, input, patch, &summary, dz, out.n_patches) {
+            Ok((result, tangential)) => {
+                upward += store_patch(side.sigma, result, tangential, out, &mut force);
+            }
             Err(e) => {
                 status = Err(e);
                 break;
@@ -579,12 +677,201 @@ fn evaluate_strips(
     Ok(upward)
 }
 
-/// Vertical component of the creep forces of `out` on the wheel (upwards positive) [N].
-fn creep_upward(out: &SideResult, sigma: f64) -> f64 {
-    out.patches[..out.n_patches]
+/// The point of strip `j` of `patch` on the wheelset (for its creepages).
+fn strip_point(patch: &StripPatch, j: usize) -> ContactPoint {
+    ContactPoint {
+        lateral: patch.points.lateral[j],
+        longitudinal: patch.geom.x_c[j],
+        y_rail: patch.points.y_rail[j],
+        contact_angle: patch.points.contact_angle[j],
+        rolling_radius: patch.points.rolling_radius[j],
+        curv_a: patch.geom.curv_a[j],
+        curv_b: patch.geom.curv_b[j],
+        ..ContactPoint::default()
+    }
+}
+
+/// The non-planar part of the creepages at strip point `p` (lever `lever` along e_y from the
+/// reference point `reference`): the strip's creepages in its own axes minus what a flat patch
+/// would give there, (ξ_ref − φ_ref·lever, η_ref, φ_ref) (physics.md §5.9). From the wheelset
+/// kinematics; with prescribed creepages, from pure rolling at the nominal wheel radius (the
+/// prescribed creepages hold at the reference point).
+fn non_planar_increment(
+    input: &WheelsetInput,
+    sigma: f64,
+    wheel_radius: f64,
+    reference: &ContactPoint,
+    p: &ContactPoint,
+    lever: f64,
+) -> Creepage {
+    let rolling;
+    let kinematics = match input.creepages {
+        Creepages::Kinematic { .. } => input,
+        Creepages::Prescribed { vx, .. } => {
+            let v = vx.abs().max(V_MIN);
+            rolling = WheelsetInput {
+                creepages: Creepages::Kinematic {
+                    vx: v,
+                    vy: 0.0,
+                    yaw_rate: 0.0,
+                    omega: v / wheel_radius,
+                },
+                ..*input
+            };
+            &rolling
+        }
+    };
+    let (here, _) = creepages_at(kinematics, sigma, p, p.contact_angle);
+    let (there, _) = creepages_at(kinematics, sigma, reference, reference.contact_angle);
+    Creepage {
+        xi: here.xi - (there.xi - there.phi * lever),
+        eta: here.eta - there.eta,
+        phi: here.phi - there.phi,
+    }
+}
+
+/// Normal and tangential result of one strip patch, and its tangential force in track axes.
+fn strip_patch_result(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    patch: &StripPatch,
+    summary: &crate::strips::PatchSummary,
+    dz: f64,
+    slot: usize,
+) -> Result<(PatchResult, [f64; 3]), InputError> {
+    let sc = summary.s_centroid;
+    let at = |v: &[f64]| patch.interpolate(v, sc);
+    let reference = ContactPoint {
+        lateral: at(&patch.points.lateral),
+        longitudinal: at(&patch.geom.x_c),
+        y_rail: at(&patch.points.y_rail),
+        contact_angle: at(&patch.points.contact_angle),
+        rolling_radius: at(&patch.points.rolling_radius),
+        curv_a: at(&patch.geom.curv_a),
+        curv_b: at(&patch.geom.curv_b),
+        ..ContactPoint::default()
+    };
+    let gamma = reference.contact_angle;
+    let (creepage, speed) = creepages_at(input, side.sigma, &reference, gamma);
+    let (a_e, b_e) = equivalent_ellipse(summary);
+    let settings = ctx.settings;
+    let m = TangentialMaterial {
+        shear_modulus: ctx.shear_modulus,
+        nu: ctx.material.poisson_ratio,
+        mu: ctx.material.friction,
+    };
+    let equivalent = EllipticContact {
+        a: a_e,
+        b: b_e,
+        normal_force: summary.normal_force,
+        shear_modulus: m.shear_modulus,
+        nu: m.nu,
+        mu: m.mu,
+    };
+    let source = settings
+        .tangential
+        .flexibility_source(settings.normal_model);
+    let table = ctx.table.expect("strip models carry a Hertz shape table");
+    let b_floor = ctx.strips.params.b_floor();
+    let n = patch.geom.len();
+    for j in 0..n {
+        let lever = side.sigma * (patch.geom.s[j] - sc);
+        let mut strip = TangentialStrip {
+            lever,
+            width: patch.geom.ds,
+            x_c: patch.geom.x_c[j],
+            half_length: patch.sol.half_length[j],
+            pmax: patch.sol.pmax[j],
+            flexibility: [0.0; 3],
+            creepage,
+            reference_spin: creepage.phi,
+        };
+        if strip.half_length > 0.0 {
+            if !settings.planar_patch {
+                let d = non_planar_increment(
+                    input,
+                    side.sigma,
+                    settings.setup.wheel_radius,
+                    &reference,
+                    &strip_point(patch, j),
+                    lever,
+                );
+                strip.creepage = Creepage {
+                    xi: creepage.xi + d.xi,
+                    eta: creepage.eta + d.eta,
+                    phi: creepage.phi + d.phi,
+                };
+            }
+            strip.flexibility = strip_flexibilities(
+                source,
+                settings.fastsim.flexibility,
+                &patch.geom,
+                &patch.sol,
+                j,
+                b_floor,
+                table,
+                &equivalent,
+                &strip.creepage,
+            )?;
+        }
+        side.tangential_strips[j] = strip;
+    }
+    let solver = &mut side.strip_fastsim[slot];
+    let t = solver.solve(&side.tangential_strips[..n], m.mu, speed);
+    // Forces: planar — all strips in the patch's axes; non-planar — each strip's in its own.
+    let mut tangential = [0.0; 3];
+    let mut fy_patch = 0.0;
+    for j in 0..n {
+        let (fx, fy) = solver.strip_force(j);
+        if fx == 0.0 && fy == 0.0 {
+            continue;
+        }
+        let gamma_j = if settings.planar_patch {
+            gamma
+        } else {
+            patch.points.contact_angle[j]
+        };
+        let v = planar_tangential(side.sigma, gamma_j, fx, fy);
+        for i in 0..3 {
+            tangential[i] += v[i];
+        }
+        fy_patch += fy * (gamma_j - gamma).cos();
+    }
+    let result = PatchResult {
+        fn_: summary.normal_force,
+        fx: t.fx,
+        fy: fy_patch,
+        mz: t.mz,
+        area: summary.area,
+        pmax: summary.pmax,
+        a: a_e,
+        b: b_e,
+        length: summary.length,
+        width: summary.width,
+        y_rail: reference.y_rail,
+        contact_angle: gamma,
+        rolling_radius: reference.rolling_radius,
+        penetration: patch.plane.approach(dz),
+        creepage,
+        adhesion_fraction: t.adhesion_fraction,
+        frictional_power: t.frictional_power,
+        max_traction: t.max_traction,
+        curv_a: reference.curv_a,
+        curv_b: reference.curv_b,
+    };
+    Ok((result, tangential))
+}
+
+/// Vertical component of the creep forces of `out` on the wheel (upwards positive) [N]: the
+/// total upward force less the normal forces' share (so that the non-planar strips' own
+/// directions count).
+fn creep_upward(out: &SideResult) -> f64 {
+    let normal: f64 = out.patches[..out.n_patches]
         .iter()
-        .map(|p| sigma * p.fy * p.contact_angle.sin())
-        .sum()
+        .map(|p| p.fn_ * p.contact_angle.cos())
+        .sum();
+    -out.force[2] - normal
 }
 
 /// Replaces the Hertz solution in `out` by the side's strip model: `load` prescribed (the Hertz
@@ -616,7 +903,7 @@ fn solve_strips(
     // correct it with the strip model's own creep forces (a fixed point that converges fast:
     // the creep forces scale with the normal force, and only their vertical part, ≤ μN sin γ,
     // enters).
-    let mut creep = creep_upward(out, side.sigma);
+    let mut creep = creep_upward(out);
     let mut dz = hint;
     for pass in 0..CREEP_PASSES {
         let target = load.map(|q| (q - creep).max(MIN_NORMAL_SHARE * q));
@@ -626,7 +913,7 @@ fn solve_strips(
         };
         side.strips = Some(strips);
         evaluate_strips(side, ctx, input, dz, out)?;
-        let new_creep = creep_upward(out, side.sigma);
+        let new_creep = creep_upward(out);
         let Some(q) = load else { break };
         if pass + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
             break;

@@ -20,29 +20,11 @@ use railcontact::wheelset::{
     Creepages, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
 };
 
-use common::{benchmark_wheelset, shared_file};
+use common::{benchmark_wheelset, read_csv, shared_file};
 
 const MM: f64 = 1e-3;
 const Q: f64 = 78_500.0;
 const VX: f64 = 2.0;
-
-/// Rows of a reference CSV file as (header → value) maps.
-fn read_csv(relative: &str) -> Vec<std::collections::HashMap<String, f64>> {
-    let path = shared_file(relative);
-    let text = std::fs::read_to_string(&path).expect("readable reference file");
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
-    lines
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| {
-            header
-                .iter()
-                .zip(l.split(','))
-                .filter_map(|(h, v)| v.trim().parse::<f64>().ok().map(|x| (h.to_string(), x)))
-                .collect()
-        })
-        .collect()
-}
 
 fn wheelset(model: NormalModel) -> Wheelset {
     let material = Material {

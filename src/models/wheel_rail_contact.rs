@@ -6,6 +6,7 @@ use super::{fastsim_settings, set_output};
 use crate::fastsim::Creepage;
 use crate::fmi::model::{InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::{IntegerVar, RealVar, Values};
+use crate::patch_tangential::TangentialModel;
 use crate::point_contact::Material;
 use crate::profile::{Profile, ProfileKind};
 use crate::strips::NormalModel;
@@ -53,7 +54,7 @@ struct Solver {
 }
 
 /// Output handles of one patch, in the order of [`patch_values`].
-type PatchVars = [RealVar; 17];
+type PatchVars = [RealVar; 18];
 
 fn patch_vars(right: bool, k: usize) -> PatchVars {
     use var::*;
@@ -76,6 +77,7 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p1_phi,
             left_p1_adhesionFraction,
             left_p1_frictionalPower,
+            left_p1_maxTraction,
         ],
         [
             left_p2_Fn,
@@ -95,6 +97,7 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p2_phi,
             left_p2_adhesionFraction,
             left_p2_frictionalPower,
+            left_p2_maxTraction,
         ],
         [
             left_p3_Fn,
@@ -114,6 +117,7 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p3_phi,
             left_p3_adhesionFraction,
             left_p3_frictionalPower,
+            left_p3_maxTraction,
         ],
     ];
     const RIGHT: [PatchVars; MAX_PATCHES] = [
@@ -135,6 +139,7 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p1_phi,
             right_p1_adhesionFraction,
             right_p1_frictionalPower,
+            right_p1_maxTraction,
         ],
         [
             right_p2_Fn,
@@ -154,6 +159,7 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p2_phi,
             right_p2_adhesionFraction,
             right_p2_frictionalPower,
+            right_p2_maxTraction,
         ],
         [
             right_p3_Fn,
@@ -173,6 +179,7 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p3_phi,
             right_p3_adhesionFraction,
             right_p3_frictionalPower,
+            right_p3_maxTraction,
         ],
     ];
     if right {
@@ -243,6 +250,15 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
         strips: usize::try_from(values.integer(var::nStrips)).unwrap_or(0),
         b_smoothing: values.real(var::bSmoothing),
         kp_shape_correction: values.boolean(var::kpShapeCorrection),
+        tangential: TangentialModel::from_code(values.integer(var::tangentialModel)).ok_or_else(
+            || {
+                ModelError::Error(format!(
+                    "tangentialModel = {} is outside the allowed range [1, 4]",
+                    values.integer(var::tangentialModel)
+                ))
+            },
+        )?,
+        planar_patch: values.boolean(var::planarPatch),
     })
 }
 
@@ -315,6 +331,7 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
             p.creepage.phi,
             p.adhesion_fraction,
             p.frictional_power,
+            p.max_traction,
         ];
         for (v, x) in patch_vars(right, k).into_iter().zip(xs) {
             set_output(values, v, x)?;

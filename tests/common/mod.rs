@@ -39,7 +39,17 @@ pub fn shared_file(relative: &str) -> PathBuf {
 /// The benchmark wheelset: `MBench_S1002_v3.prw` on `MBench_UIC60_v3.prr` (rail already inclined
 /// 1:40 in the file, so `rail_inclination = 0`), gauge 1435 mm at 14 mm, flange-back distance
 /// 1360 mm, nominal radius 460 mm, with the given material and normal model.
+#[allow(dead_code)] // not every test crate that includes this module uses it
 pub fn benchmark_wheelset(material: Material, model: NormalModel) -> Wheelset {
+    benchmark_wheelset_with(material, |s| s.normal_model = model)
+}
+
+/// The benchmark wheelset with settings adjusted by `adjust` (from the defaults of
+/// [`WheelsetSettings::new`] on the benchmark set-up).
+pub fn benchmark_wheelset_with(
+    material: Material,
+    adjust: impl FnOnce(&mut WheelsetSettings),
+) -> Wheelset {
     let load = |file: &str, kind| {
         let p = shared_file(&format!("profiles/{file}"));
         Profile::load(p.to_str().unwrap(), kind, 0.0)
@@ -49,14 +59,32 @@ pub fn benchmark_wheelset(material: Material, model: NormalModel) -> Wheelset {
         rail_inclination: 0.0,
         ..TrackSetup::default()
     };
-    let settings = WheelsetSettings {
-        normal_model: model,
-        ..WheelsetSettings::new(setup, material)
-    };
+    let mut settings = WheelsetSettings::new(setup, material);
+    adjust(&mut settings);
     Wheelset::new(
         &load("MBench_S1002_v3.prw", ProfileKind::Wheel),
         &load("MBench_UIC60_v3.prr", ProfileKind::Rail),
         settings,
     )
     .expect("benchmark wheelset")
+}
+
+/// Rows of a reference CSV file of the shared data as (header → value) maps; non-numeric fields
+/// are left out.
+#[allow(dead_code)] // not every test crate that includes this module reads CSV files
+pub fn read_csv(relative: &str) -> Vec<std::collections::HashMap<String, f64>> {
+    let path = shared_file(relative);
+    let text = std::fs::read_to_string(&path).expect("readable reference file");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    lines
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            header
+                .iter()
+                .zip(l.split(','))
+                .filter_map(|(h, v)| v.trim().parse::<f64>().ok().map(|x| (h.to_string(), x)))
+                .collect()
+        })
+        .collect()
 }

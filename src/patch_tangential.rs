@@ -1,0 +1,158 @@
+//! The tangential problem of one non-elliptic (strip) patch: which flexibilities each strip gets
+//! and which solver runs (physics.md §4.8, §5.9, §6).
+//!
+//! Options (`tangentialModel` of the WheelRailContact FMU):
+//!
+//! 1. **the normal model's own** — the pairing of each paper: Kik–Piotrowski and ANALYN with the
+//!    equivalent ellipse (Piotrowski & Kik 2008; CONTACT after KPEC and ANALYN), Linder with its
+//!    local ellipses (a_j, b_L) sharing one lateral semi-axis, both STRIPES variants with the local
+//!    Hertz ellipse of each strip (Ayasse & Chollet 2005);
+//! 2. **equivalent ellipse** — one ellipse of the patch's area and length/width ratio,
+//!    a_e = √(S/π)·√(L/W), b_e = √(S/π)·√(W/L), and its three flexibilities (F1) on every strip,
+//!    used individually (Kik–Piotrowski's choice);
+//! 3. **FaStrip** (Sichani et al. 2016) on the equivalent ellipse (`crate::fastrip`);
+//! 4. **local Hertz ellipses** — STRIPES's strip-wise ellipses for any strip model: strip j gets
+//!    a_j = x_l,j and b_j = a_j/(a/b)_H, the Hertz axis ratio of its curvatures (A_j, max(B_j,
+//!    B_min)).
+//!
+//! FASTSIM's flexibility option (`flexibility`: three, single F2, blended F4) applies per strip to
+//! that strip's ellipse and creepages; the blending weight F4 uses the equivalent ellipse's
+//! characteristic creepages (the patch's μN), the same for all strips. In every option the
+//! traction bound is μ × the normal model's own pressure on the strips (§4.3).
+
+use crate::error::InputError;
+use crate::fastsim::{
+    blend_flexibilities, blending_weight, single_flexibility, three_flexibilities, Creepage,
+    EllipticContact, Flexibility,
+};
+use crate::kalker::creep_coefficients;
+use crate::strips::{HertzShapeTable, NormalModel, PatchSummary, StripGeometry, StripSolution};
+
+/// Tangential model on strip patches (`tangentialModel`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TangentialModel {
+    /// 1: the normal model's own flexibilities (see the module docs).
+    #[default]
+    ModelDefault,
+    /// 2: one equivalent ellipse for the whole patch.
+    EquivalentEllipse,
+    /// 3: FaStrip on the equivalent ellipse.
+    Fastrip,
+    /// 4: strip-wise local Hertz ellipses (STRIPES's).
+    LocalEllipses,
+}
+
+impl TangentialModel {
+    pub const ALL: [TangentialModel; 4] = [
+        TangentialModel::ModelDefault,
+        TangentialModel::EquivalentEllipse,
+        TangentialModel::Fastrip,
+        TangentialModel::LocalEllipses,
+    ];
+
+    /// From the FMU code 1–4.
+    pub fn from_code(code: i32) -> Option<Self> {
+        Self::ALL.get(usize::try_from(code - 1).ok()?).copied()
+    }
+
+    /// The FMU code 1–4.
+    pub fn code(self) -> i32 {
+        Self::ALL.iter().position(|&m| m == self).unwrap_or(0) as i32 + 1
+    }
+
+    /// Short name (CLI, docs).
+    pub fn name(self) -> &'static str {
+        match self {
+            TangentialModel::ModelDefault => "model-default",
+            TangentialModel::EquivalentEllipse => "equivalent-ellipse",
+            TangentialModel::Fastrip => "fastrip",
+            TangentialModel::LocalEllipses => "local-ellipses",
+        }
+    }
+
+    /// Where the strips' flexibilities come from for normal model `normal`.
+    pub fn flexibility_source(self, normal: NormalModel) -> FlexibilitySource {
+        match self {
+            TangentialModel::EquivalentEllipse | TangentialModel::Fastrip => {
+                FlexibilitySource::EquivalentEllipse
+            }
+            TangentialModel::LocalEllipses => FlexibilitySource::LocalHertz,
+            TangentialModel::ModelDefault => match normal {
+                NormalModel::Linder => FlexibilitySource::ModelLocal,
+                NormalModel::StripesB | NormalModel::StripesAB => FlexibilitySource::LocalHertz,
+                NormalModel::Hertz | NormalModel::KikPiotrowski | NormalModel::Analyn => {
+                    FlexibilitySource::EquivalentEllipse
+                }
+            },
+        }
+    }
+}
+
+/// Which ellipse gives a strip its flexibilities.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FlexibilitySource {
+    /// The patch's equivalent ellipse (same for every strip).
+    EquivalentEllipse,
+    /// The normal model's local ellipse (`StripSolution::local_axes`; Linder), falling back to
+    /// the local Hertz ellipse where the model set none.
+    ModelLocal,
+    /// The strip's local Hertz ellipse.
+    LocalHertz,
+}
+
+/// The equivalent ellipse of a patch: semi-axes (a_e, b_e) [m] with the patch's area and
+/// length/width ratio (physics.md §4.8).
+pub fn equivalent_ellipse(summary: &PatchSummary) -> (f64, f64) {
+    let aspect = (summary.length / summary.width).sqrt();
+    let radius = (summary.area / std::f64::consts::PI).sqrt();
+    (radius * aspect, radius / aspect)
+}
+
+/// Material and friction of the tangential problem.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentialMaterial {
+    /// Combined shear modulus G [Pa].
+    pub shear_modulus: f64,
+    /// Poisson ratio ν [-].
+    pub nu: f64,
+    /// Coefficient of friction μ [-].
+    pub mu: f64,
+}
+
+/// Flexibilities [L1, L2, L3] [m/Pa] of strip `j` for `source`, with the flexibility option
+/// `option` applied to the strip's `creepage` (F2 single, F4 blended with the weight of the
+/// patch's equivalent ellipse `equivalent` carrying the patch's normal force).
+#[allow(clippy::too_many_arguments)]
+pub fn strip_flexibilities(
+    source: FlexibilitySource,
+    option: Flexibility,
+    geom: &StripGeometry,
+    sol: &StripSolution,
+    j: usize,
+    b_floor: f64,
+    table: &HertzShapeTable,
+    equivalent: &EllipticContact,
+    creepage: &Creepage,
+) -> Result<[f64; 3], InputError> {
+    let (a, b) = match source {
+        FlexibilitySource::EquivalentEllipse => (equivalent.a, equivalent.b),
+        FlexibilitySource::ModelLocal if sol.local_axes[j].0 > 0.0 => sol.local_axes[j],
+        FlexibilitySource::ModelLocal | FlexibilitySource::LocalHertz => {
+            let shape = table.lookup(geom.curv_a[j], geom.curv_b[j].max(b_floor))?;
+            let a = sol.half_length[j];
+            (a, a / shape.a_over_b)
+        }
+    };
+    let c = creep_coefficients(a, b, equivalent.nu)?;
+    let three = three_flexibilities(a, b, equivalent.shear_modulus, &c);
+    Ok(match option {
+        Flexibility::Three => three,
+        Flexibility::Single => [single_flexibility(three, creepage, (a * b).sqrt()); 3],
+        Flexibility::Blended => {
+            // F4's weight from the patch (equivalent ellipse, total N), L× from the strip's own.
+            let c_e = creep_coefficients(equivalent.a, equivalent.b, equivalent.nu)?;
+            let w = blending_weight(equivalent, &c_e, creepage);
+            blend_flexibilities(three, a, creepage, w)
+        }
+    })
+}
