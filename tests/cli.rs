@@ -408,3 +408,50 @@ fn solve_with_a_strip_model_gives_its_strips_and_the_pressure_grid() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("--grid 1"));
 }
+
+#[test]
+fn solve_with_traction_gives_the_tangential_field() {
+    // ANALYN, prescribed ξ = 1e−3, planar patch, nx = 20: `--traction` lists nx elements per
+    // strip in contact of every patch; summing px over the elements times their area
+    // (2 x_l/nx × Δs, Δs from the strip table) gives the patch's Fx output back (same numbers,
+    // 1e−9 relative); every |traction| ≤ the maxTraction output.
+    let case = temp_file(
+        "traction.json",
+        "{\"normalModel\": 6, \"nStrips\": 30, \"nx\": 20, \"creepageMode\": 2, \"xi\": 0.001, \
+         \"planarPatch\": true}\n",
+    );
+    let doc = solve(&["solve", case.to_str().unwrap(), "--traction"]);
+    let strips = doc.get("strips").and_then(Value::as_object).unwrap();
+    let traction = doc
+        .get("traction")
+        .and_then(Value::as_object)
+        .expect("traction");
+    assert_eq!(traction.len(), strips.len());
+    let entry = |o: &[(String, Value)]| {
+        o.iter()
+            .find(|(k, _)| k == "right.p1")
+            .and_then(|(_, v)| v.as_array())
+            .map(<[Value]>::to_vec)
+            .expect("right.p1")
+    };
+    let (table, field) = (entry(strips), entry(traction));
+    assert_eq!(field.len(), 20 * table.len());
+    let num = |v: &Value, k: &str| v.get(k).and_then(Value::as_f64).unwrap();
+    let ds = num(&table[1], "s") - num(&table[0], "s");
+    let mut fx: f64 = 0.0;
+    let max = real(&doc, "right.p1.maxTraction");
+    for (k, strip) in table.iter().enumerate() {
+        let dx = (num(strip, "xLead") - num(strip, "xTrail")) / 20.0;
+        for e in &field[20 * k..20 * (k + 1)] {
+            let e = e.as_array().unwrap();
+            let (px, py): (f64, f64) = (e[2].as_f64().unwrap(), e[3].as_f64().unwrap());
+            fx += px * dx * ds;
+            assert!(px.hypot(py) <= max * (1.0 + 1e-12));
+        }
+    }
+    let fx_out = real(&doc, "right.p1.Fx");
+    assert!(
+        fx < 0.0 && ((fx - fx_out) / fx_out).abs() < 1e-9,
+        "{fx} vs {fx_out}"
+    );
+}

@@ -29,7 +29,7 @@ const USAGE: &str = "\
 railcontact - the WheelRailContact FMU's wheel-rail contact model on the command line
 
 Usage:
-  railcontact solve [CASE.json] [--grid NX]
+  railcontact solve [CASE.json] [--grid NX] [--traction]
   railcontact sweep [CASE.json] [--from Y0] [--to Y1] [--step DY]
   railcontact help | --help | -h
 
@@ -50,6 +50,9 @@ solve   Evaluates the model once (the FMU's own code) and prints a JSON object: 
         A, B [1/m] (relative curvatures; B as the strip geometry gives it, before any floor).
         --grid NX adds \"grid\": per patch the pressure at NX element centres along each
         strip, as [x, s, p] triples (m, m, Pa).
+        --traction adds \"traction\": per patch every element of the tangential solution as
+        [x, s, px, py, slip] (m, m, Pa, Pa, 1 slip / 0 adhesion); px along the rolling
+        direction, py along the element's lateral axis, forces of the rail on the wheel.
 sweep   Evaluates the model over the lateral shift y from Y0 to Y1 in steps of DY (metres;
         default -0.002 to 0.008, step 0.0005; the case's y is ignored) and prints a table per
         wheel: number of patches, then per patch yRail [mm], contact angle [rad], normal force
@@ -124,7 +127,13 @@ fn run() -> Result<i32, Failure> {
     }
     match command.as_str() {
         "solve" => {
-            let a = positional(rest, &["--grid"])?;
+            let traction = rest.iter().any(|a| a == "--traction");
+            let rest: Vec<String> = rest
+                .iter()
+                .filter(|a| *a != "--traction")
+                .cloned()
+                .collect();
+            let a = positional(&rest, &["--grid"])?;
             let grid = match a.options.iter().rev().find(|(k, _)| k == "--grid") {
                 None => None,
                 Some((_, v)) => Some(
@@ -140,7 +149,7 @@ fn run() -> Result<i32, Failure> {
                         })?,
                 ),
             };
-            emit(&solve(a.case.as_deref(), grid)?)?;
+            emit(&solve(a.case.as_deref(), grid, traction)?)?;
             Ok(0)
         }
         "sweep" => {
@@ -388,7 +397,7 @@ fn model(values: &Values) -> Result<Box<dyn Model>, Failure> {
 // ---------------------------------------------------------------------------------------------
 // solve
 
-fn solve(case: Option<&str>, grid: Option<usize>) -> Result<String, Failure> {
+fn solve(case: Option<&str>, grid: Option<usize>, traction: bool) -> Result<String, Failure> {
     let mut values = load_case(case)?;
     let mut model = model(&values)?;
     model.evaluate(&mut values, 0.0)?;
@@ -480,6 +489,41 @@ fn solve(case: Option<&str>, grid: Option<usize>) -> Result<String, Failure> {
             out.push_str("\n    ]");
         }
         out.push_str(if tables.is_empty() { "}" } else { "\n  }" });
+    }
+    if traction {
+        out.push_str(",\n  \"traction\": {");
+        let mut first = true;
+        for (side, result, right) in [
+            ("left", &patches.left, false),
+            ("right", &patches.right, true),
+        ] {
+            for k in 0..result.n_patches {
+                let Some(field) = wheelset.traction_field(right, k) else {
+                    continue;
+                };
+                let _ = write!(
+                    out,
+                    "{}\n    \"{side}.p{}\": [",
+                    if first { "" } else { "," },
+                    k + 1
+                );
+                first = false;
+                for (i, e) in field.iter().enumerate() {
+                    let _ = write!(
+                        out,
+                        "{}\n      [{}, {}, {}, {}, {}]",
+                        if i == 0 { "" } else { "," },
+                        json::number(e.x),
+                        json::number(e.s),
+                        json::number(e.px),
+                        json::number(e.py),
+                        u8::from(e.slipping)
+                    );
+                }
+                out.push_str("\n    ]");
+            }
+        }
+        out.push_str(if first { "}" } else { "\n  }" });
     }
     out.push_str("\n}\n");
     Ok(out)

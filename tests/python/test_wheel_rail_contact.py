@@ -499,3 +499,58 @@ def test_normal_model_out_of_range_is_rejected_and_logged(new_wrc) -> None:
         re.search(r"\bnormalModel = 7 is outside the allowed range integer in \[1, 6\]", m.text)
         for m in slave.errors()
     ), slave.messages
+
+
+# ---------------------------------------------------------------------------------------------
+# 6. Tangential contact on non-elliptic patches (tangentialModel 1–4, planarPatch)
+
+TANGENTIAL_MODELS = {1: "model's own", 2: "equivalent ellipse", 3: "FaStrip", 4: "local ellipses"}
+
+
+@pytest.mark.parametrize("planar", [True, False])
+@pytest.mark.parametrize("tangential", sorted(TANGENTIAL_MODELS))
+def test_tangential_options_through_the_fmu(new_wrc, tangential: int, planar: bool) -> None:
+    # Every option with ANALYN on the central case and prescribed creepages: finite outputs,
+    # the linear-limit sign Fx < 0 for ξ > 0 (docs/conventions.md), |F| ≤ μN (+0.2 %: the
+    # elements' midpoint sum of the pressure, tests/tangential.rs), the load balance and a
+    # positive maximum traction.
+    params = _central_params(6) | {
+        "tangentialModel": tangential,
+        "planarPatch": planar,
+        "creepageMode": 2,
+    }
+    slave = new_wrc(params=params)
+    slave.set(xi=1e-3, eta=0.0, phi=0.0)
+    slave.step()
+    out = slave.outputs()
+    assert all(math.isfinite(v) for v in out.values())
+    fn = out["right.p1.Fn"]
+    assert out["right.p1.Fx"] < 0.0
+    assert math.hypot(out["right.p1.Fx"], out["right.p1.Fy"]) <= 0.3 * fn * 1.002
+    assert out["right.p1.maxTraction"] > 0.0
+    assert out["right.Fz"] == pytest.approx(-Q_DEFAULT, rel=1e-6)
+    assert not slave.errors()
+
+
+def test_pure_spin_through_the_fmu(new_wrc) -> None:
+    # The recommended option (ANALYN, tangentialModel 1, planar patch) against the exact theory
+    # (reference/central/pure_spin_summary.csv): the issue's tolerances, Mz ±15 %, Fy ±10 %.
+    with open(shared_file("reference/central/pure_spin_summary.csv"), newline="") as f:
+        ref = next(csv.DictReader(f))
+    params = _central_params(6) | {"planarPatch": True, "creepageMode": 2, "mu": 0.3}
+    slave = new_wrc(params=params)
+    slave.set(xi=0.0, eta=0.0, phi=float(ref["cphi_per_mm"]) * 1e3)
+    slave.step()
+    out = slave.outputs()
+    assert out["right.p1.Fy"] == pytest.approx(float(ref["fs_N"]), rel=0.10)
+    assert out["right.p1.Mz"] == pytest.approx(float(ref["mn_Nmm"]) * 1e-3, rel=0.15)
+
+
+def test_tangential_model_out_of_range_is_rejected_and_logged(new_wrc) -> None:
+    slave = new_wrc(initialize=False)
+    with pytest.raises(FMICallException):
+        slave.set(tangentialModel=5)
+    assert any(
+        re.search(r"\btangentialModel = 5 is outside the allowed range integer in \[1, 4\]", m.text)
+        for m in slave.errors()
+    ), slave.messages
