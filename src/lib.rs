@@ -14,6 +14,7 @@ pub mod error;
 pub mod analyn;
 pub mod contact_search;
 pub mod elliptic;
+pub mod fastrip;
 pub mod fastsim;
 pub mod halfspace;
 pub mod hertz;

@@ -102,6 +102,20 @@ pub struct StripFastsimResult {
     pub max_traction: f64,
 }
 
+/// One strip's sums (forces in N in the strip's own axes).
+#[derive(Debug, Clone, Copy, Default)]
+struct StripTotals {
+    fx: f64,
+    fy: f64,
+    /// Σ x p_y ΔA [N m].
+    x_fy: f64,
+    /// Frictional power per unit rolling speed [N].
+    power_per_speed: f64,
+    max_traction: f64,
+    n_elements: usize,
+    n_adhesion: usize,
+}
+
 /// Traction in one element of the last solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StripElementTraction {
@@ -161,21 +175,8 @@ impl StripFastsim {
     /// skipped) with friction `mu` and rolling speed `speed` ≥ 0 [m/s] (scales the power only).
     /// Strips with non-finite or non-positive flexibilities carry no traction. No allocation.
     pub fn solve(&mut self, strips: &[TangentialStrip], mu: f64, speed: f64) -> StripFastsimResult {
-        let n = strips.len().min(MAX_STRIPS);
-        self.n_strips = n;
         let nx = self.nx;
-        let mut out = StripFastsimResult::default();
-        let (mut n_contact, mut n_adhesion) = (0usize, 0usize);
-        let mut max_sq: f64 = 0.0;
-        let mut power = 0.0;
-        for (j, strip) in strips[..n].iter().enumerate() {
-            self.strip_fx[j] = 0.0;
-            self.strip_fy[j] = 0.0;
-            self.geometry[j] = (strip.x_c, strip.half_length, strip.pmax);
-            let row = j * nx..(j + 1) * nx;
-            self.px[row.clone()].fill(0.0);
-            self.py[row.clone()].fill(0.0);
-            self.slipping[row.clone()].fill(false);
+        self.run(strips, speed, |strip, px_row, py_row, slip_row| {
             let [l1, l2, l3] = strip.flexibility;
             let usable = |v: f64| v.is_finite() && v > 0.0;
             if !(usable(strip.half_length)
@@ -185,7 +186,7 @@ impl StripFastsim {
                 && usable(l2)
                 && usable(l3))
             {
-                continue;
+                return None;
             }
             let dx = 2.0 * strip.half_length / nx as f64;
             let k = strip.creepage;
@@ -195,7 +196,12 @@ impl StripFastsim {
             let spin_offset = SPIN_OFFSET_FRACTION * dx;
             let bound_scale = mu * strip.pmax;
             let (mut px, mut py) = (0.0_f64, 0.0_f64);
+            let mut t = StripTotals {
+                n_elements: nx,
+                ..StripTotals::default()
+            };
             let (mut sum_px, mut sum_py, mut sum_x_py, mut sum_power) = (0.0, 0.0, 0.0, 0.0);
+            let mut max_sq: f64 = 0.0;
             for i in (0..nx).rev() {
                 // Element centre, normalised position u ∈ (−1, 1) along the strip.
                 let u = -1.0 + (2.0 * i as f64 + 1.0) / nx as f64;
@@ -219,26 +225,126 @@ impl StripFastsim {
                 } else {
                     px = trial_x;
                     py = trial_y;
-                    n_adhesion += 1;
+                    t.n_adhesion += 1;
                 }
-                let e = j * nx + i;
-                self.px[e] = px;
-                self.py[e] = py;
-                self.slipping[e] = slipping;
+                px_row[i] = px;
+                py_row[i] = py;
+                slip_row[i] = slipping;
                 sum_px += px;
                 sum_py += py;
                 sum_x_py += x * py;
                 max_sq = max_sq.max(px * px + py * py);
             }
-            n_contact += nx;
             let area = dx * strip.width;
-            let fx = sum_px * area;
-            self.strip_fx[j] = fx;
-            self.strip_fy[j] = sum_py * area;
-            out.fx += fx;
-            out.fy += self.strip_fy[j];
-            out.mz += sum_x_py * area - strip.lever * fx;
-            power += sum_power * strip.width;
+            t.fx = sum_px * area;
+            t.fy = sum_py * area;
+            t.x_fy = sum_x_py * area;
+            t.power_per_speed = sum_power * strip.width;
+            t.max_traction = max_sq.sqrt();
+            Some(t)
+        })
+    }
+
+    /// FaStrip (`crate::fastrip`, Sichani et al. 2016) on the same strips: the strip-theory
+    /// tractions in each strip's adhesion zone, μ p in the FASTSIM pass's direction in its slip
+    /// zone, with FS1's dimensionless creepages from the patch's equivalent ellipse (`a_e`,
+    /// `b_e` [m], Kalker coefficients `coefficients`, peak pressure `p0_e` = 3N/(2π a_e b_e)) and
+    /// each strip's own creepages (the strip's spin also in the lever term), shear modulus `g`,
+    /// Poisson ratio `nu`. Same outputs and buffers as [`StripFastsim::solve`]; no allocation.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_fastrip(
+        &mut self,
+        strips: &[TangentialStrip],
+        (a_e, b_e, p0_e): (f64, f64, f64),
+        coefficients: &crate::kalker::CreepCoefficients,
+        g: f64,
+        nu: f64,
+        mu: f64,
+        speed: f64,
+    ) -> StripFastsimResult {
+        use crate::fastrip::{solve_strip, FastripScales, FastripStrip};
+        let nx = self.nx;
+        self.run(strips, speed, |strip, px_row, py_row, slip_row| {
+            if !(strip.half_length > 0.0 && strip.pmax > 0.0 && strip.width > 0.0) {
+                return None;
+            }
+            let k = strip.creepage;
+            let scales =
+                FastripScales::new(a_e, b_e, coefficients, g, nu, mu, p0_e, k.xi, k.eta, k.phi);
+            let strip_input = FastripStrip {
+                y: strip.lever,
+                x_c: strip.x_c,
+                half_length: strip.half_length,
+                pmax: strip.pmax,
+            };
+            let (flex, w) = (strip.flexibility, strip.width);
+            let sums = solve_strip(
+                &strip_input,
+                &scales,
+                mu,
+                flex,
+                k.xi,
+                k.eta,
+                k.phi,
+                nx,
+                px_row,
+                py_row,
+                slip_row,
+            );
+            // FaStrip's sums are per unit strip width.
+            Some(StripTotals {
+                fx: sums.fx * w,
+                fy: sums.fy * w,
+                x_fy: sums.x_fy * w,
+                power_per_speed: sums.power_density * w,
+                max_traction: sums.max_traction,
+                n_elements: sums.n_elements,
+                n_adhesion: sums.n_adhesion,
+            })
+        })
+    }
+
+    /// The bookkeeping shared by the solvers: clears each strip's row, lets `solve_one` fill it
+    /// (returning `None` for a strip that carries nothing) and sums the patch.
+    fn run(
+        &mut self,
+        strips: &[TangentialStrip],
+        speed: f64,
+        mut solve_one: impl FnMut(
+            &TangentialStrip,
+            &mut [f64],
+            &mut [f64],
+            &mut [bool],
+        ) -> Option<StripTotals>,
+    ) -> StripFastsimResult {
+        let n = strips.len().min(MAX_STRIPS);
+        self.n_strips = n;
+        let nx = self.nx;
+        let mut out = StripFastsimResult::default();
+        let (mut n_contact, mut n_adhesion) = (0usize, 0usize);
+        let mut power = 0.0;
+        for (j, strip) in strips[..n].iter().enumerate() {
+            self.geometry[j] = (strip.x_c, strip.half_length, strip.pmax);
+            let row = j * nx..(j + 1) * nx;
+            self.px[row.clone()].fill(0.0);
+            self.py[row.clone()].fill(0.0);
+            self.slipping[row.clone()].fill(false);
+            let t = solve_one(
+                strip,
+                &mut self.px[row.clone()],
+                &mut self.py[row.clone()],
+                &mut self.slipping[row],
+            )
+            .unwrap_or_default();
+            self.strip_fx[j] = t.fx;
+            self.strip_fy[j] = t.fy;
+            out.fx += t.fx;
+            out.fy += t.fy;
+            out.mz += t.x_fy - strip.lever * t.fx;
+            power += t.power_per_speed;
+            out.max_traction = out.max_traction.max(t.max_traction);
+            n_contact += t.n_elements;
+            n_adhesion += t.n_adhesion;
         }
         out.adhesion_fraction = if n_contact > 0 {
             n_adhesion as f64 / n_contact as f64
@@ -251,7 +357,6 @@ impl StripFastsim {
         } else {
             0.0
         };
-        out.max_traction = max_sq.sqrt();
         out
     }
 

@@ -56,7 +56,7 @@ pub const V_MIN: f64 = 0.01;
 /// components are subtracted (they cannot carry the wheel: |Fy| ≤ μN).
 const MIN_NORMAL_SHARE: f64 = 0.05;
 /// Passes of the strip models' load balance that update the creep forces' vertical component.
-const CREEP_PASSES: usize = 6;
+const CREEP_PASSES: usize = 12;
 /// Relative tolerance of that update on the wheel load.
 const CREEP_TOLERANCE: f64 = 1e-7;
 /// Iteration limit of the load balance (safeguarded secant; converges in ~5–10).
@@ -510,14 +510,15 @@ fn creepages_at(
     }
 }
 
-/// Evaluates one wheel lowered by `dz`; returns the vertical force of the rail on the wheel,
-/// upwards positive [N].
+/// Evaluates one wheel lowered by `dz` (with FASTSIM per patch if `tangential`, else normal
+/// forces only); returns the vertical force of the rail on the wheel, upwards positive [N].
 fn evaluate_side(
     side: &mut Side,
     ctx: &Context,
     input: &WheelsetInput,
     dz: f64,
     out: &mut SideResult,
+    tangential: bool,
 ) -> Result<f64, InputError> {
     *out = SideResult {
         z: dz,
@@ -526,7 +527,6 @@ fn evaluate_side(
     let n = side.geometry.regions(dz, &mut side.regions);
     // Regions come field side first; keep that order.
     let mut upward = 0.0;
-    let mut force = [0.0; 3];
     for k in 0..n {
         let region = side.regions[k];
         let deepest = side.geometry.point_at(region.deepest as f64);
@@ -549,15 +549,14 @@ fn evaluate_side(
             curv_b: deepest.curv_b,
             ..PatchResult::default()
         };
-        upward += add_patch(side, ctx, input, &reference, result, out, &mut force)?;
+        upward += add_patch(side, ctx, input, &reference, result, out, tangential)?;
     }
-    out.force = force;
     Ok(upward)
 }
 
 /// Completes a patch whose normal solution is in `result` (normal force, size, approach): the
 /// reference point's position and angle, creepages, FASTSIM on the patch's (equivalent)
-/// ellipse; stores it in the next slot of `out`, adds its force to `force` (track axes) and
+/// ellipse; stores it in the next slot of `out`, adds its force to `out.force` (track axes) and
 /// returns its upward force on the wheel [N].
 fn add_patch(
     side: &mut Side,
@@ -566,7 +565,7 @@ fn add_patch(
     reference: &ContactPoint,
     mut result: PatchResult,
     out: &mut SideResult,
-    force: &mut [f64; 3],
+    tangential: bool,
 ) -> Result<f64, InputError> {
     if out.n_patches >= MAX_PATCHES {
         return Ok(0.0);
@@ -585,8 +584,11 @@ fn add_patch(
         nu: ctx.material.poisson_ratio,
         mu: ctx.material.friction,
     };
-    let t = side.fastsim[out.n_patches].solve(&contact, &creepage, speed)?;
     side.last_y_rail[out.n_patches] = reference.y_rail;
+    if !tangential {
+        return Ok(store_patch(side.sigma, result, [0.0; 3], out));
+    }
+    let t = side.fastsim[out.n_patches].solve(&contact, &creepage, speed)?;
     result.fx = t.fx;
     result.fy = t.fy;
     result.mz = t.mz;
@@ -594,7 +596,7 @@ fn add_patch(
     result.frictional_power = t.frictional_power;
     result.max_traction = t.max_traction;
     let tangential = planar_tangential(side.sigma, gamma, result.fx, result.fy);
-    Ok(store_patch(side.sigma, result, tangential, out, force))
+    Ok(store_patch(side.sigma, result, tangential, out))
 }
 
 /// Unit vectors e_y, e_z of the contact axes at contact angle `gamma` on side `sigma` (track
@@ -611,20 +613,14 @@ fn planar_tangential(sigma: f64, gamma: f64, fx: f64, fy: f64) -> [f64; 3] {
 }
 
 /// Stores a completed patch `result` in the next slot of `out` and adds its force — the
-/// tangential part `tangential` (track axes) and the normal force along −e_z — to `force`.
+/// tangential part `tangential` (track axes) and the normal force along −e_z — to `out.force`.
 /// Returns its upward force on the wheel [N].
-fn store_patch(
-    sigma: f64,
-    result: PatchResult,
-    tangential: [f64; 3],
-    out: &mut SideResult,
-    force: &mut [f64; 3],
-) -> f64 {
+fn store_patch(sigma: f64, result: PatchResult, tangential: [f64; 3], out: &mut SideResult) -> f64 {
     let (_, e_z) = contact_axes(sigma, result.contact_angle);
     let mut total = [0.0; 3];
     for i in 0..3 {
         total[i] = tangential[i] - result.fn_ * e_z[i];
-        force[i] += total[i];
+        out.force[i] += total[i];
     }
     out.patches[out.n_patches] = result;
     out.n_patches += 1;
@@ -651,7 +647,6 @@ fn evaluate_strips(
         return Ok(0.0);
     };
     let mut upward = 0.0;
-    let mut force = [0.0; 3];
     let mut status = Ok(());
     for patch in strips.patches() {
         if out.n_patches >= MAX_PATCHES {
@@ -663,7 +658,7 @@ fn evaluate_strips(
         }
         match strip_patch_result(side, ctx, input, patch, &summary, dz, out.n_patches) {
             Ok((result, tangential)) => {
-                upward += store_patch(side.sigma, result, tangential, out, &mut force);
+                upward += store_patch(side.sigma, result, tangential, out);
             }
             Err(e) => {
                 status = Err(e);
@@ -673,7 +668,6 @@ fn evaluate_strips(
     }
     side.strips = Some(strips);
     status?;
-    out.force = force;
     Ok(upward)
 }
 
@@ -818,7 +812,21 @@ fn strip_patch_result(
         side.tangential_strips[j] = strip;
     }
     let solver = &mut side.strip_fastsim[slot];
-    let t = solver.solve(&side.tangential_strips[..n], m.mu, speed);
+    let t = if settings.tangential == TangentialModel::Fastrip {
+        let c_e = crate::kalker::creep_coefficients(a_e, b_e, m.nu)?;
+        let p0_e = 1.5 * summary.normal_force / (std::f64::consts::PI * a_e * b_e);
+        solver.solve_fastrip(
+            &side.tangential_strips[..n],
+            (a_e, b_e, p0_e),
+            &c_e,
+            m.shear_modulus,
+            m.nu,
+            m.mu,
+            speed,
+        )
+    } else {
+        solver.solve(&side.tangential_strips[..n], m.mu, speed)
+    };
     // Forces: planar — all strips in the patch's axes; non-planar — each strip's in its own.
     let mut tangential = [0.0; 3];
     let mut fy_patch = 0.0;
@@ -904,6 +912,7 @@ fn solve_strips(
     // the creep forces scale with the normal force, and only their vertical part, ≤ μN sin γ,
     // enters).
     let mut creep = creep_upward(out);
+    let mut fixed_point = CreepFixedPoint::default();
     let mut dz = hint;
     for pass in 0..CREEP_PASSES {
         let target = load.map(|q| (q - creep).max(MIN_NORMAL_SHARE * q));
@@ -918,7 +927,7 @@ fn solve_strips(
         if pass + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
             break;
         }
-        creep = new_creep;
+        creep = fixed_point.next(creep, new_creep);
         strips = side
             .strips
             .take()
@@ -953,14 +962,22 @@ fn solve_side(
         .iter()
         .map(|c| c.gap)
         .fold(f64::INFINITY, f64::min);
-    hertz_side(side, ctx, input, load, z, touch, out)?;
+    let strip_model = side.strips.is_some();
+    hertz_side(side, ctx, input, load, z, touch, out, !strip_model)?;
     if load != Some(0.0) {
         solve_strips(side, ctx, input, load, touch, out)?;
     }
     Ok(())
 }
 
-/// Multi-Hertzian solution of one wheel (also the starting guess of the strip models).
+/// Multi-Hertzian solution of one wheel (also the starting guess of the strip models, then
+/// without the tangential problem: `tangential` false).
+///
+/// Prescribed load: the normal forces are balanced against Q less the creep forces' vertical
+/// component by the load iteration on normal forces alone (cheap), then FASTSIM runs once at the
+/// balanced height; the creep component is updated by an accelerated fixed point
+/// ([`CreepFixedPoint`]) until it changes by less than [`CREEP_TOLERANCE`] of Q.
+#[allow(clippy::too_many_arguments)]
 fn hertz_side(
     side: &mut Side,
     ctx: &Context,
@@ -969,9 +986,10 @@ fn hertz_side(
     z: f64,
     touch: f64,
     out: &mut SideResult,
+    tangential: bool,
 ) -> Result<(), WheelsetError> {
     let Some(q) = load else {
-        evaluate_side(side, ctx, input, z, out)?;
+        evaluate_side(side, ctx, input, z, out, tangential)?;
         return Ok(());
     };
     if q == 0.0 {
@@ -994,11 +1012,54 @@ fn hertz_side(
     let stiffness = unit.normal_force / 1e-4f64.powf(1.5);
     let cos_g = deepest.contact_angle.cos().max(0.05);
     let hi_pen = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
-    let balanced = balance(touch, hi_pen, q, LOAD_ITERATIONS, |dz| {
-        Ok::<_, InputError>(evaluate_side(side, ctx, input, dz, out)? - q)
-    })?;
-    if !balanced.evaluated {
-        evaluate_side(side, ctx, input, balanced.lowering, out)?;
+    let mut creep = 0.0;
+    let mut fixed_point = CreepFixedPoint::default();
+    for pass in 0..CREEP_PASSES {
+        let target = (q - creep).max(MIN_NORMAL_SHARE * q);
+        let balanced = balance(touch, hi_pen, target, LOAD_ITERATIONS, |dz| {
+            Ok::<_, InputError>(evaluate_side(side, ctx, input, dz, out, false)? - target)
+        })?;
+        if !tangential {
+            if !balanced.evaluated {
+                evaluate_side(side, ctx, input, balanced.lowering, out, false)?;
+            }
+            return Ok(());
+        }
+        evaluate_side(side, ctx, input, balanced.lowering, out, true)?;
+        let new_creep = creep_upward(out);
+        if pass + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
+            break;
+        }
+        creep = fixed_point.next(creep, new_creep);
     }
     Ok(())
+}
+
+/// Fixed-point iteration c ← g(c) on the creep forces' vertical component, accelerated by the
+/// secant on h(c) = g(c) − c once two iterates exist (Steffensen-like; falls back to the plain
+/// step when the secant is degenerate). The map is smooth and contracting (|g'| ≲ μ sin γ), so a
+/// few passes reach [`CREEP_TOLERANCE`].
+#[derive(Debug, Default)]
+struct CreepFixedPoint {
+    previous: Option<(f64, f64)>,
+}
+
+impl CreepFixedPoint {
+    /// The next iterate after evaluating g(`c`) = `g`.
+    fn next(&mut self, c: f64, g: f64) -> f64 {
+        let h = g - c;
+        let next = match self.previous {
+            Some((c0, h0)) if (h - h0).abs() > 0.0 && c != c0 => {
+                let secant = c - h * (c - c0) / (h - h0);
+                if secant.is_finite() {
+                    secant
+                } else {
+                    g
+                }
+            }
+            _ => g,
+        };
+        self.previous = Some((c, h));
+        next
+    }
 }

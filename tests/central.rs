@@ -20,7 +20,7 @@ use railcontact::wheelset::{
     Creepages, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
 };
 
-use common::{benchmark_wheelset, read_csv, shared_file};
+use common::{benchmark_wheelset, read_csv};
 
 const MM: f64 = 1e-3;
 const Q: f64 = 78_500.0;

@@ -84,10 +84,13 @@ fn right_total(out: &WheelsetResult) -> PatchResult {
     side.patches[0]
 }
 
-/// The recommended option: ANALYN with FASTSIM on the equivalent ellipse (its own pairing,
-/// `tangentialModel` = 1), planar patch — the set-up of the half-space reference.
-const BEST: (NormalModel, TangentialModel, bool) =
-    (NormalModel::Analyn, TangentialModel::ModelDefault, true);
+/// The options the acceptance is checked on (planar patch — the set-up of the half-space
+/// reference): ANALYN with FaStrip (`tangentialModel` = 3, the closest) and with its own FASTSIM
+/// pairing (`tangentialModel` = 1, equivalent ellipse).
+const BEST: [(NormalModel, TangentialModel, bool); 2] = [
+    (NormalModel::Analyn, TangentialModel::Fastrip, true),
+    (NormalModel::Analyn, TangentialModel::ModelDefault, true),
+];
 
 #[test]
 fn creep_curves_against_the_exact_theory() {
@@ -131,7 +134,7 @@ fn creep_curves_against_the_exact_theory() {
         }
         let mean = sum / count as f64;
         println!("worst {worst:.4} mean {mean:.4}");
-        if (model, t, planar) == BEST {
+        if BEST.contains(&(model, t, planar)) {
             // The acceptance: within 10 % of μN at every point, 5 % on average.
             assert!(worst < 0.10 && mean < 0.05, "worst {worst}, mean {mean}");
         }
@@ -166,7 +169,7 @@ fn pure_spin_against_the_exact_theory() {
                 p.adhesion_fraction,
                 r["adh_fraction"]
             );
-            if (model, t, planar) == BEST {
+            if BEST.contains(&(model, t, planar)) {
                 // The acceptance: spin moment within 15 %, lateral force within 10 %.
                 assert!(
                     (p.mz / mz_ref - 1.0).abs() < 0.15,
@@ -195,7 +198,7 @@ fn pure_spin_slip_zone_outline() {
         .map(|e| (e["x_mm"] * 1e-3, e["s_mm"] * 1e-3))
         .collect();
     let mean_x_ref = slip_ref.iter().map(|e| e.0).sum::<f64>() / slip_ref.len() as f64;
-    let (model, t, planar) = BEST;
+    let (model, t, planar) = BEST[0];
     let mut ws = wheelset(model, t, planar);
     solve(
         &mut ws,
@@ -222,9 +225,13 @@ fn pure_spin_slip_zone_outline() {
         field.len(),
         mean_x * 1e3
     );
-    // Pure spin: the slip zone starts at the trailing edge in both (FASTSIM's adhesion zone is
-    // too large, so only the location is asserted).
+    // Pure spin: the slip zone lies at the trailing edge in both, and FaStrip's slip share is
+    // close to the exact one (reference 427/4210 = 10.1 %, FaStrip 11.9 %; FASTSIM's 3.2 % would
+    // fail): within 5 percentage points.
     assert!(mean_x_ref < 0.0 && mean_x < 0.0);
+    let share = slipping.len() as f64 / field.len() as f64;
+    let share_ref = slip_ref.len() as f64 / grid.len() as f64;
+    assert!((share - share_ref).abs() < 0.05, "{share} vs {share_ref}");
 }
 
 #[test]
@@ -233,8 +240,13 @@ fn mirrored_creepages_and_wheels_mirror_the_forces() {
     // both wheels, right(ξ, η, φ) = left(ξ, −η, −φ) with Fy and Mz negated; ξ → −ξ alone negates
     // Fx. Tolerance: the sides are solved independently on mirrored profile samples (round-off of
     // the mirrored set-up), 1e−6 of μN.
-    for planar in [true, false] {
-        let mut ws = wheelset(NormalModel::Analyn, TangentialModel::ModelDefault, planar);
+    for (t, planar) in [
+        (TangentialModel::ModelDefault, true),
+        (TangentialModel::ModelDefault, false),
+        (TangentialModel::Fastrip, true),
+        (TangentialModel::Fastrip, false),
+    ] {
+        let mut ws = wheelset(NormalModel::Analyn, t, planar);
         let k = Creepage {
             xi: 1e-3,
             eta: 5e-4,
@@ -284,8 +296,12 @@ fn full_sliding_reaches_mu_n() {
     // Far into saturation every element slips: |F| = μ Σ p ΔA, the elements' midpoint sum of
     // the strips' semi-elliptic pressure (+0.12 % at 40 elements per strip, measured); non-planar,
     // the strips' forces also turn by their angle to the patch (cos of ≲ 2°: −0.06 %). 2e−3.
-    for planar in [true, false] {
-        let mut ws = wheelset(NormalModel::Analyn, TangentialModel::ModelDefault, planar);
+    for (t, planar) in [
+        (TangentialModel::ModelDefault, true),
+        (TangentialModel::ModelDefault, false),
+        (TangentialModel::Fastrip, true),
+    ] {
+        let mut ws = wheelset(NormalModel::Analyn, t, planar);
         let p = right_total(&solve(
             &mut ws,
             Creepage {

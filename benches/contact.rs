@@ -1,0 +1,105 @@
+//! Speed of the contact element (issue 7): Hertz, FASTSIM, the normal models and a full wheelset
+//! evaluation per model pair, on the built-in S1002/UIC60 pair at 78.5 kN per wheel.
+//! `cargo bench --bench contact`; figures in docs/performance.md.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+
+use railcontact::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
+use railcontact::hertz::hertz_from_approach;
+use railcontact::patch_tangential::TangentialModel;
+use railcontact::point_contact::Material;
+use railcontact::profile::{Profile, ProfileKind};
+use railcontact::strips::NormalModel;
+use railcontact::track::TrackSetup;
+use railcontact::wheelset::{
+    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
+};
+
+const Q: f64 = 78_500.0;
+
+fn wheelset(model: NormalModel, tangential: TangentialModel) -> Wheelset {
+    let wheel = Profile::load("S1002", ProfileKind::Wheel, 0.0).unwrap();
+    let rail = Profile::load("UIC60", ProfileKind::Rail, 0.0).unwrap();
+    let material = Material {
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.28,
+        friction: 0.3,
+    };
+    let mut settings = WheelsetSettings::new(TrackSetup::default(), material);
+    settings.normal_model = model;
+    settings.tangential = tangential;
+    Wheelset::new(&wheel, &rail, settings).unwrap()
+}
+
+fn input(y: f64) -> WheelsetInput {
+    WheelsetInput {
+        y,
+        yaw: 0.0,
+        roll: 0.0,
+        vertical: Vertical::Loads { left: Q, right: Q },
+        creepages: Creepages::Kinematic {
+            vx: 30.0,
+            vy: 0.0,
+            yaw_rate: 0.0,
+            omega: 30.0 / 0.46 * (1.0 + 1e-3),
+        },
+    }
+}
+
+fn bench_point(c: &mut Criterion) {
+    c.bench_function("hertz_from_approach", |b| {
+        b.iter(|| hertz_from_approach(black_box(1.09), black_box(2.3), black_box(8e-5), 1.15e11))
+    });
+    for n in [20usize, 50] {
+        let mut f = Fastsim::new(FastsimSettings {
+            nx: n,
+            ny: n,
+            ..Default::default()
+        })
+        .unwrap();
+        let contact = EllipticContact {
+            a: 8e-3,
+            b: 4e-3,
+            normal_force: 82e3,
+            shear_modulus: 82e9,
+            nu: 0.28,
+            mu: 0.3,
+        };
+        let k = Creepage {
+            xi: 0.0,
+            eta: -6.25e-4,
+            phi: 0.625,
+        };
+        c.bench_function(&format!("fastsim_{n}x{n}"), |b| {
+            b.iter(|| f.solve(black_box(&contact), black_box(&k), 1.0).unwrap())
+        });
+    }
+}
+
+fn bench_wheelset(c: &mut Criterion) {
+    let pairs = [
+        (NormalModel::Hertz, TangentialModel::ModelDefault),
+        (NormalModel::Linder, TangentialModel::ModelDefault),
+        (NormalModel::KikPiotrowski, TangentialModel::ModelDefault),
+        (NormalModel::StripesB, TangentialModel::ModelDefault),
+        (NormalModel::StripesAB, TangentialModel::ModelDefault),
+        (NormalModel::Analyn, TangentialModel::ModelDefault),
+    ];
+    let mut group = c.benchmark_group("wheelset");
+    for (model, tangential) in pairs {
+        for (case, y) in [("central", 0.0), ("flange_6mm", 6e-3)] {
+            let mut ws = wheelset(model, tangential);
+            let mut out = WheelsetResult::default();
+            let inp = input(y);
+            ws.solve(&inp, &mut out).unwrap();
+            group.bench_function(
+                format!("{}_{}_{case}", model.name(), tangential.name()),
+                |b| b.iter(|| ws.solve(black_box(&inp), &mut out).unwrap()),
+            );
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_point, bench_wheelset);
+criterion_main!(benches);
