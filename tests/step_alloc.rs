@@ -1,0 +1,157 @@
+//! A step performs no heap allocation after initialisation (issue 7): the wheelset solver for
+//! every normal model and tangential option, and `fmi2DoStep` of the WheelRailContact FMU through
+//! its exported C functions. Counted with a global allocator wrapper; one test in this binary so
+//! that no other test thread allocates meanwhile.
+
+use fmi_sys::fmi2::*;
+use railcontact::fmi::export::*;
+use railcontact::models::wheel_rail_contact::INFO;
+use railcontact::patch_tangential::TangentialModel;
+use railcontact::point_contact::Material;
+use railcontact::profile::{Profile, ProfileKind};
+use railcontact::strips::NormalModel;
+use railcontact::track::TrackSetup;
+use railcontact::wheelset::{
+    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
+};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::ffi::CString;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Lateral shifts of a ramp over tread and flange contact [m].
+fn ramp(k: usize) -> f64 {
+    -1e-3 + 7e-3 * (k as f64 / 40.0)
+}
+
+fn wheelset_steps_do_not_allocate() {
+    let wheel = Profile::load("S1002", ProfileKind::Wheel, 0.0).unwrap();
+    let rail = Profile::load("UIC60", ProfileKind::Rail, 0.0).unwrap();
+    let material = Material {
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.28,
+        friction: 0.3,
+    };
+    for model in NormalModel::ALL {
+        for tangential in TangentialModel::ALL {
+            for planar in [false, true] {
+                let mut settings = WheelsetSettings::new(TrackSetup::default(), material);
+                settings.normal_model = model;
+                settings.tangential = tangential;
+                settings.planar_patch = planar;
+                let mut ws = Wheelset::new(&wheel, &rail, settings).unwrap();
+                let mut out = WheelsetResult::default();
+                let input = |y| WheelsetInput {
+                    y,
+                    yaw: 0.0,
+                    roll: 0.0,
+                    vertical: Vertical::Loads {
+                        left: 78_500.0,
+                        right: 78_500.0,
+                    },
+                    creepages: Creepages::Kinematic {
+                        vx: 30.0,
+                        vy: 0.1,
+                        yaw_rate: 0.0,
+                        omega: 30.0 / 0.46 * 1.001,
+                    },
+                };
+                ws.solve(&input(0.0), &mut out).unwrap();
+                let before = ALLOCATIONS.load(Ordering::SeqCst);
+                for k in 0..=40 {
+                    ws.solve(&input(ramp(k)), &mut out).unwrap();
+                }
+                let n = ALLOCATIONS.load(Ordering::SeqCst) - before;
+                assert_eq!(
+                    n,
+                    0,
+                    "{} + {} planar={planar}: {n} allocations in 41 steps",
+                    model.name(),
+                    tangential.name()
+                );
+            }
+        }
+    }
+}
+
+fn vr(name: &str) -> u32 {
+    INFO.variable(name).expect("known variable").vr
+}
+
+fn do_step_does_not_allocate(model: i32) {
+    let callbacks = fmi2CallbackFunctions {
+        logger: Some(fmi_sys::fmi2::logger::callback_logger_handler),
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: std::ptr::null_mut(),
+    };
+    let name = CString::new(format!("alloc{model}")).unwrap();
+    let guid = CString::new(INFO.guid).unwrap();
+    let uri = c"file:///nonexistent/resources";
+    // SAFETY: valid strings and callbacks for each call's duration; the component is used only
+    // between Instantiate and FreeInstance.
+    unsafe {
+        let c = fmi2Instantiate(
+            name.as_ptr(),
+            fmi2Type_fmi2CoSimulation,
+            guid.as_ptr(),
+            uri.as_ptr(),
+            &callbacks,
+            0,
+            0,
+        );
+        assert!(!c.is_null());
+        let r = vr("normalModel");
+        assert_eq!(fmi2SetInteger(c, &r, 1, &model), fmi2Status_fmi2OK);
+        assert_eq!(
+            fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0),
+            fmi2Status_fmi2OK
+        );
+        assert_eq!(fmi2EnterInitializationMode(c), fmi2Status_fmi2OK);
+        assert_eq!(fmi2ExitInitializationMode(c), fmi2Status_fmi2OK);
+        let y = vr("y");
+        let fx = vr("right.Fx");
+        let h = 1e-3;
+        assert_eq!(fmi2DoStep(c, 0.0, h, 1), fmi2Status_fmi2OK);
+        let before = ALLOCATIONS.load(Ordering::SeqCst);
+        let mut value = 0.0;
+        for k in 0..=40 {
+            assert_eq!(fmi2SetReal(c, &y, 1, &ramp(k)), fmi2Status_fmi2OK);
+            assert_eq!(fmi2DoStep(c, (k + 1) as f64 * h, h, 1), fmi2Status_fmi2OK);
+            assert_eq!(fmi2GetReal(c, &fx, 1, &mut value), fmi2Status_fmi2OK);
+        }
+        let n = ALLOCATIONS.load(Ordering::SeqCst) - before;
+        fmi2FreeInstance(c);
+        assert_eq!(n, 0, "normalModel {model}: {n} allocations in 41 DoSteps");
+        assert!(value.is_finite());
+    }
+}
+
+#[test]
+fn steps_do_not_allocate() {
+    wheelset_steps_do_not_allocate();
+    for model in 1..=6 {
+        do_step_does_not_allocate(model);
+    }
+}
