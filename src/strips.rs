@@ -428,6 +428,36 @@ impl HertzShapeTable {
         Self { nodes }
     }
 
+    /// The Hertz ellipse of curvatures A, B > 0 [1/m] at approach δ ≥ 0 [m] with contact modulus
+    /// E* [Pa], from the table: a = √(ε_x δ/A), b = a/(a/b), p0 = E*√(δ(A + B))·P, N = (2/3)π a b p0
+    /// (relative error ≤ 1e−7, the table's; `crate::hertz::hertz_from_approach` outside its
+    /// range). Same errors as `hertz_from_approach`.
+    pub fn patch(
+        &self,
+        curv_a: f64,
+        curv_b: f64,
+        approach: f64,
+        e_star: f64,
+    ) -> Result<crate::hertz::HertzPatch, InputError> {
+        let u = (curv_a / curv_b).ln();
+        if !(u.abs() <= SHAPE_TABLE_RANGE && approach > 0.0 && approach.is_finite())
+            || !(e_star > 0.0 && e_star.is_finite())
+        {
+            return crate::hertz::hertz_from_approach(curv_a, curv_b, approach, e_star);
+        }
+        let shape = self.at_log_ratio(u);
+        let a = (shape.eps_x * approach / curv_a).sqrt();
+        let b = a / shape.a_over_b;
+        let p0 = e_star * (approach * (curv_a + curv_b)).sqrt() * shape.p0_coeff;
+        Ok(crate::hertz::HertzPatch {
+            a,
+            b,
+            approach,
+            p0,
+            normal_force: 2.0 / 3.0 * std::f64::consts::PI * a * b * p0,
+        })
+    }
+
     /// Hertz shape for curvatures A, B > 0 [1/m]. Non-positive or non-finite curvatures are an
     /// error naming A or B.
     pub fn lookup(&self, curv_a: f64, curv_b: f64) -> Result<HertzShape, InputError> {
@@ -502,6 +532,39 @@ mod tests {
         let c = hertz_shape_exact(2.0, 2.0).unwrap();
         assert!((c.eps_x - 0.5).abs() < 1e-12);
         assert!((c.p0_coeff - 2.0 / std::f64::consts::PI).abs() < 1e-12);
+    }
+
+    #[test]
+    fn table_patch_matches_hertz_from_approach() {
+        // Within the table's 1e−7 (a, b, p0; N ∝ a b p0 compounds three: 3e−7), the exact
+        // solver outside the table's range and at δ = 0, and the same errors.
+        let table = HertzShapeTable::new();
+        let e_star = 1.15e11;
+        for (a, b) in [
+            (1.087, 0.37),
+            (0.9, 3.7),
+            (2.0, 2.0),
+            (1.0, 1e-3),
+            (1.0, 1e-9),
+        ] {
+            for delta in [0.0, 1e-6, 6e-5] {
+                let t = table.patch(a, b, delta, e_star).unwrap();
+                let x = hertz_from_approach(a, b, delta, e_star).unwrap();
+                for (p, q, tol) in [
+                    (t.a, x.a, 1e-7),
+                    (t.b, x.b, 2e-7),
+                    (t.p0, x.p0, 1e-7),
+                    (t.normal_force, x.normal_force, 3e-7),
+                ] {
+                    assert!(
+                        (p - q).abs() <= tol * q.abs(),
+                        "A {a} B {b} δ {delta}: {p} vs {q}"
+                    );
+                }
+            }
+        }
+        assert!(table.patch(1.0, -1.0, 1e-5, e_star).is_err());
+        assert!(table.patch(1.0, 1.0, -1e-5, e_star).is_err());
     }
 
     #[test]

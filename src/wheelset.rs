@@ -30,7 +30,7 @@ use crate::contact_search::{
 };
 use crate::error::InputError;
 use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
-use crate::hertz::{contact_modulus, hertz_from_approach, shear_modulus};
+use crate::hertz::{contact_modulus, shear_modulus};
 use crate::load_balance::balance;
 use crate::patch_tangential::{
     equivalent_ellipse, strip_flexibilities, TangentialMaterial, TangentialModel,
@@ -264,8 +264,8 @@ pub struct Wheelset {
     settings: WheelsetSettings,
     e_star: f64,
     shear_modulus: f64,
-    /// Hertz shapes for the strip models (`None` for Hertz).
-    table: Option<HertzShapeTable>,
+    /// Hertz shapes: the multi-Hertzian patches and the strip models.
+    table: HertzShapeTable,
     left: Side,
     right: Side,
 }
@@ -319,7 +319,7 @@ impl Wheelset {
             settings,
             e_star: contact_modulus(m.youngs_modulus, m.poisson_ratio),
             shear_modulus: shear_modulus(m.youngs_modulus, m.poisson_ratio),
-            table: (settings.normal_model != NormalModel::Hertz).then(HertzShapeTable::new),
+            table: HertzShapeTable::new(),
             left: side("left", -1.0)?,
             right: side("right", 1.0)?,
         })
@@ -413,7 +413,7 @@ impl Wheelset {
                     kp_shape_correction: self.settings.kp_shape_correction,
                 },
             },
-            table: self.table.as_ref(),
+            table: &self.table,
             settings: &self.settings,
         };
         let (q_left, q_right, z) = match input.vertical {
@@ -468,7 +468,7 @@ struct Context<'a> {
     shear_modulus: f64,
     material: Material,
     strips: StripSettings,
-    table: Option<&'a HertzShapeTable>,
+    table: &'a HertzShapeTable,
     settings: &'a WheelsetSettings,
 }
 
@@ -532,7 +532,9 @@ fn evaluate_side(
         let deepest = side.geometry.point_at(region.deepest as f64);
         let reference = side.geometry.point_at(region.centroid_index);
         let approach = region.depth * deepest.contact_angle.cos();
-        let patch = hertz_from_approach(deepest.curv_a, deepest.curv_b, approach, ctx.e_star)?;
+        let patch = ctx
+            .table
+            .patch(deepest.curv_a, deepest.curv_b, approach, ctx.e_star)?;
         if !(patch.a.is_normal() && patch.b.is_normal()) {
             continue;
         }
@@ -766,7 +768,7 @@ fn strip_patch_result(
     let source = settings
         .tangential
         .flexibility_source(settings.normal_model);
-    let table = ctx.table.expect("strip models carry a Hertz shape table");
+    let table = ctx.table;
     let b_floor = ctx.strips.params.b_floor();
     let n = patch.geom.len();
     for j in 0..n {
@@ -892,9 +894,10 @@ fn solve_strips(
     touch: f64,
     out: &mut SideResult,
 ) -> Result<(), WheelsetError> {
-    let (Some(mut strips), Some(table)) = (side.strips.take(), ctx.table) else {
+    let Some(mut strips) = side.strips.take() else {
         return Ok(());
     };
+    let table = ctx.table;
     let hint = out.z;
     let solve = |strips: &mut StripSide, side: &Side, target: Option<f64>, hint: f64| {
         strips.solve(
@@ -1008,7 +1011,9 @@ fn hertz_side(
         .min_by(|a, b| a.gap.total_cmp(&b.gap))
         .copied()
         .expect("search returns at least one candidate");
-    let unit = hertz_from_approach(deepest.curv_a, deepest.curv_b, 1e-4, ctx.e_star)?;
+    let unit = ctx
+        .table
+        .patch(deepest.curv_a, deepest.curv_b, 1e-4, ctx.e_star)?;
     let stiffness = unit.normal_force / 1e-4f64.powf(1.5);
     let cos_g = deepest.contact_angle.cos().max(0.05);
     let hi_pen = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
