@@ -440,9 +440,12 @@ impl HertzShapeTable {
         e_star: f64,
     ) -> Result<crate::hertz::HertzPatch, InputError> {
         let u = (curv_a / curv_b).ln();
-        if !(u.abs() <= SHAPE_TABLE_RANGE && approach > 0.0 && approach.is_finite())
-            || !(e_star > 0.0 && e_star.is_finite())
-        {
+        let usable = u.abs() <= SHAPE_TABLE_RANGE
+            && approach > 0.0
+            && approach.is_finite()
+            && e_star > 0.0
+            && e_star.is_finite();
+        if !usable {
             return crate::hertz::hertz_from_approach(curv_a, curv_b, approach, e_star);
         }
         let shape = self.at_log_ratio(u);
