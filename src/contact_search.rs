@@ -511,7 +511,10 @@ impl WheelOnRail {
         let (z_w, dz_w, d2z_w) = self.wheel.eval(s.y_wheel);
         let contact_angle = -dz_r.atan();
         let rolling_radius = self.setup.wheel_radius + z_w;
-        let curvature = |dz: f64, d2z: f64| d2z / (1.0 + dz * dz).powf(1.5);
+        let curvature = |dz: f64, d2z: f64| {
+            let q = 1.0 + dz * dz;
+            d2z / (q * q.sqrt())
+        };
         let curv_b = (0.5 * (curvature(dz_r, d2z_r) - curvature(dz_w, d2z_w))).max(self.b_min);
         ContactPoint {
             lateral: w,
@@ -547,7 +550,8 @@ impl WheelOnRail {
             let mut deepest = i;
             loop {
                 // Interpenetration volume per unit width: ∫ (pen − A x²) dx ∝ pen^{3/2}.
-                let pen = (dz - s[i].gap).powf(1.5);
+                let depth = dz - s[i].gap;
+                let pen = depth * depth.sqrt();
                 weight += pen;
                 moment += pen * i as f64;
                 if s[i].gap < s[deepest].gap {
