@@ -146,6 +146,10 @@ pub struct StripFastsim {
     /// Strip geometry of the last solve (for [`StripFastsim::tractions`]).
     geometry: Vec<(f64, f64, f64)>,
     n_strips: usize,
+    /// Element centres u_i ∈ (−1, 1) along a strip and the bound's shape √(1 − u_i²), the same
+    /// for every strip (precomputed: no square root per element in the march).
+    centre: Vec<f64>,
+    shape: Vec<f64>,
 }
 
 impl StripFastsim {
@@ -163,6 +167,13 @@ impl StripFastsim {
             slipping: vec![false; MAX_STRIPS * nx],
             geometry: vec![(0.0, 0.0, 0.0); MAX_STRIPS],
             n_strips: 0,
+            centre: (0..nx).map(|i| element_centre(i, nx)).collect(),
+            shape: (0..nx)
+                .map(|i| {
+                    let u = element_centre(i, nx);
+                    (1.0 - u * u).max(0.0).sqrt()
+                })
+                .collect(),
         })
     }
 
@@ -176,7 +187,10 @@ impl StripFastsim {
     /// Strips with non-finite or non-positive flexibilities carry no traction. No allocation.
     pub fn solve(&mut self, strips: &[TangentialStrip], mu: f64, speed: f64) -> StripFastsimResult {
         let nx = self.nx;
-        self.run(strips, speed, |strip, px_row, py_row, slip_row| {
+        // Moved out for the closure (run borrows the buffers); put back below. No allocation.
+        let centre = std::mem::take(&mut self.centre);
+        let shape = std::mem::take(&mut self.shape);
+        let result = self.run(strips, speed, |strip, px_row, py_row, slip_row| {
             let [l1, l2, l3] = strip.flexibility;
             let usable = |v: f64| v.is_finite() && v > 0.0;
             if !(usable(strip.half_length)
@@ -203,10 +217,8 @@ impl StripFastsim {
             let (mut sum_px, mut sum_py, mut sum_x_py, mut sum_power) = (0.0, 0.0, 0.0, 0.0);
             let mut max_sq: f64 = 0.0;
             for i in (0..nx).rev() {
-                // Element centre, normalised position u ∈ (−1, 1) along the strip.
-                let u = -1.0 + (2.0 * i as f64 + 1.0) / nx as f64;
-                let x = strip.x_c + u * strip.half_length;
-                let bound = bound_scale * (1.0 - u * u).max(0.0).sqrt();
+                let x = strip.x_c + centre[i] * strip.half_length;
+                let bound = bound_scale * shape[i];
                 let trial_x = px - step_x;
                 let trial_y = py - (step_y_const + step_y_per_x * (x + spin_offset));
                 let trial_sq = trial_x * trial_x + trial_y * trial_y;
@@ -242,7 +254,10 @@ impl StripFastsim {
             t.power_per_speed = sum_power * strip.width;
             t.max_traction = max_sq.sqrt();
             Some(t)
-        })
+        });
+        self.centre = centre;
+        self.shape = shape;
+        result
     }
 
     /// FaStrip (`crate::fastrip`, Sichani et al. 2016) on the same strips: the strip-theory
@@ -380,7 +395,7 @@ impl StripFastsim {
                 0
             };
             (0..n).map(move |i| {
-                let u = -1.0 + (2.0 * i as f64 + 1.0) / nx as f64;
+                let u = element_centre(i, nx);
                 let e = j * nx + i;
                 StripElementTraction {
                     strip: j,
@@ -393,6 +408,11 @@ impl StripFastsim {
             })
         })
     }
+}
+
+/// Centre of element `i` of `n` equal elements on (−1, 1).
+fn element_centre(i: usize, n: usize) -> f64 {
+    -1.0 + (2.0 * i as f64 + 1.0) / n as f64
 }
 
 #[cfg(test)]

@@ -29,11 +29,12 @@ use crate::contact_search::{
     ContactCandidates, ContactPoint, Region, SearchError, SidePose, WheelOnRail,
 };
 use crate::error::InputError;
+use crate::fastsim::Flexibility;
 use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use crate::hertz::{contact_modulus, shear_modulus};
 use crate::load_balance::balance;
 use crate::patch_tangential::{
-    equivalent_ellipse, strip_flexibilities, TangentialMaterial, TangentialModel,
+    equivalent_ellipse, strip_flexibilities, FlexibilitySource, TangentialMaterial, TangentialModel,
 };
 use crate::point_contact::Material;
 use crate::profile::Profile;
@@ -771,6 +772,19 @@ fn strip_patch_result(
     let table = ctx.table;
     let b_floor = ctx.strips.params.b_floor();
     let n = patch.geom.len();
+    // The equivalent ellipse's three flexibilities are the same on every strip: computed once.
+    let shared_flexibility = (source == FlexibilitySource::EquivalentEllipse
+        && settings.fastsim.flexibility == Flexibility::Three)
+        .then(|| {
+            let c = crate::kalker::creep_coefficients(a_e, b_e, m.nu)?;
+            Ok::<_, InputError>(crate::fastsim::three_flexibilities(
+                a_e,
+                b_e,
+                m.shear_modulus,
+                &c,
+            ))
+        })
+        .transpose()?;
     for j in 0..n {
         let lever = side.sigma * (patch.geom.s[j] - sc);
         let mut strip = TangentialStrip {
@@ -799,17 +813,20 @@ fn strip_patch_result(
                     phi: creepage.phi + d.phi,
                 };
             }
-            strip.flexibility = strip_flexibilities(
-                source,
-                settings.fastsim.flexibility,
-                &patch.geom,
-                &patch.sol,
-                j,
-                b_floor,
-                table,
-                &equivalent,
-                &strip.creepage,
-            )?;
+            strip.flexibility = match shared_flexibility {
+                Some(l) => l,
+                None => strip_flexibilities(
+                    source,
+                    settings.fastsim.flexibility,
+                    &patch.geom,
+                    &patch.sol,
+                    j,
+                    b_floor,
+                    table,
+                    &equivalent,
+                    &strip.creepage,
+                )?,
+            };
         }
         side.tangential_strips[j] = strip;
     }
