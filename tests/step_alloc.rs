@@ -1,9 +1,12 @@
-//! A step performs no heap allocation after initialisation (issue 7): the wheelset solver for
-//! every normal model and tangential option, and `fmi2DoStep` of the WheelRailContact FMU through
-//! its exported C functions. Counted with a global allocator wrapper; one test in this binary so
+//! A step performs no heap allocation after initialisation (issue 7): `Fastsim::solve` (physics
+//! core contract, `src/lib.rs`), the wheelset solver for every normal model and tangential
+//! option, and `fmi2DoStep` of the WheelRailContact FMU through its exported C functions. Counted with a global allocator wrapper; one test in this binary so
 //! that no other test thread allocates meanwhile.
 
 use fmi_sys::fmi2::*;
+use railcontact::fastsim::{
+    Creepage, EllipticContact, Fastsim, FastsimSettings, Flexibility, TractionBound,
+};
 use railcontact::fmi::export::*;
 use railcontact::models::wheel_rail_contact::INFO;
 use railcontact::patch_tangential::TangentialModel;
@@ -150,8 +153,82 @@ fn do_step_does_not_allocate(model: i32) {
 
 #[test]
 fn steps_do_not_allocate() {
+    fastsim_solve_does_not_allocate();
     wheelset_steps_do_not_allocate();
     for model in 1..=6 {
         do_step_does_not_allocate(model);
     }
+}
+
+fn fastsim_solve_does_not_allocate() {
+    let contact = EllipticContact {
+        a: 8e-3,
+        b: 4e-3,
+        normal_force: 82e3,
+        shear_modulus: 82e9,
+        nu: 0.28,
+        mu: 0.3,
+    };
+    let creepages = [
+        Creepage {
+            xi: 0.0,
+            eta: -6.25e-4,
+            phi: 0.625,
+        },
+        Creepage {
+            xi: 1e-3,
+            eta: 2e-3,
+            phi: -3.0,
+        },
+        Creepage {
+            xi: 1e300,
+            eta: 0.0,
+            phi: 0.0,
+        },
+        Creepage::default(),
+    ];
+    let mut solvers: Vec<Fastsim> = Vec::new();
+    for bound in [TractionBound::Elliptic, TractionBound::Parabolic] {
+        for flexibility in [
+            Flexibility::Three,
+            Flexibility::Single,
+            Flexibility::Blended,
+        ] {
+            solvers.push(
+                Fastsim::new(FastsimSettings {
+                    nx: 40,
+                    ny: 41,
+                    bound,
+                    flexibility,
+                })
+                .unwrap(),
+            );
+        }
+    }
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let mut checksum = 0.0;
+    for f in solvers.iter_mut() {
+        for k in &creepages {
+            let r = f.solve(&contact, k, 30.0).unwrap();
+            checksum += r.fy + f.tractions().map(|e| e.px).sum::<f64>();
+        }
+        // Errors and the zero-load path must not allocate either.
+        assert!(f
+            .solve(
+                &contact,
+                &Creepage {
+                    xi: f64::NAN,
+                    ..creepages[0]
+                },
+                1.0
+            )
+            .is_err());
+        let none = EllipticContact {
+            normal_force: 0.0,
+            ..contact
+        };
+        checksum += f.solve(&none, &creepages[0], 1.0).unwrap().fx;
+    }
+    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    assert_eq!(after - before, 0, "solve allocated (checksum {checksum})");
 }
