@@ -25,7 +25,7 @@ use crate::fastsim::{
     blend_flexibilities, blending_weight, single_flexibility, three_flexibilities, Creepage,
     EllipticContact, Flexibility,
 };
-use crate::kalker::creep_coefficients;
+use crate::kalker::{creep_coefficients, CreepCoefficients};
 use crate::strips::{HertzShapeTable, NormalModel, PatchSummary, StripGeometry, StripSolution};
 
 /// Tangential model on strip patches (`tangentialModel`).
@@ -53,11 +53,6 @@ impl TangentialModel {
     /// From the FMU code 1–4.
     pub fn from_code(code: i32) -> Option<Self> {
         Self::ALL.get(usize::try_from(code - 1).ok()?).copied()
-    }
-
-    /// The FMU code 1–4.
-    pub fn code(self) -> i32 {
-        Self::ALL.iter().position(|&m| m == self).unwrap_or(0) as i32 + 1
     }
 
     /// Short name (CLI, docs).
@@ -100,28 +95,52 @@ pub enum FlexibilitySource {
     LocalHertz,
 }
 
-/// The equivalent ellipse of a patch: semi-axes (a_e, b_e) [m] with the patch's area and
-/// length/width ratio (physics.md §4.8).
-pub fn equivalent_ellipse(summary: &PatchSummary) -> (f64, f64) {
-    let aspect = (summary.length / summary.width).sqrt();
-    let radius = (summary.area / std::f64::consts::PI).sqrt();
-    (radius * aspect, radius / aspect)
+/// The equivalent ellipse of a patch (physics.md §4.8): semi-axes with the patch's area S and
+/// length/width ratio L/W, a_e = √(S/π)·√(L/W), b_e = √(S/π)·√(W/L), carrying the patch's normal
+/// force, with its Kalker coefficients (computed once per patch).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EquivalentEllipse {
+    /// Semi-axes, normal force, G, ν and μ of the ellipse.
+    pub contact: EllipticContact,
+    /// Kalker's C11, C22, C23 for a_e/b_e and ν.
+    pub coefficients: CreepCoefficients,
 }
 
-/// Material and friction of the tangential problem.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TangentialMaterial {
-    /// Combined shear modulus G [Pa].
-    pub shear_modulus: f64,
-    /// Poisson ratio ν [-].
-    pub nu: f64,
-    /// Coefficient of friction μ [-].
-    pub mu: f64,
+impl EquivalentEllipse {
+    /// The equivalent ellipse of `summary` with shear modulus `shear_modulus` [Pa], Poisson ratio
+    /// `nu` and friction `mu`. Errors as `crate::kalker::creep_coefficients`.
+    pub fn of(
+        summary: &PatchSummary,
+        shear_modulus: f64,
+        nu: f64,
+        mu: f64,
+    ) -> Result<Self, InputError> {
+        let aspect = (summary.length / summary.width).sqrt();
+        let radius = (summary.area / std::f64::consts::PI).sqrt();
+        let (a, b) = (radius * aspect, radius / aspect);
+        Ok(Self {
+            contact: EllipticContact {
+                a,
+                b,
+                normal_force: summary.normal_force,
+                shear_modulus,
+                nu,
+                mu,
+            },
+            coefficients: creep_coefficients(a, b, nu)?,
+        })
+    }
+
+    /// Hertzian peak pressure of the ellipse, 3N/(2π a_e b_e) [Pa].
+    pub fn peak_pressure(&self) -> f64 {
+        let c = &self.contact;
+        1.5 * c.normal_force / (std::f64::consts::PI * c.a * c.b)
+    }
 }
 
 /// Flexibilities [L1, L2, L3] [m/Pa] of strip `j` for `source`, with the flexibility option
 /// `option` applied to the strip's `creepage` (F2 single, F4 blended with the weight of the
-/// patch's equivalent ellipse `equivalent` carrying the patch's normal force).
+/// patch's equivalent ellipse `equivalent`).
 #[allow(clippy::too_many_arguments)]
 pub fn strip_flexibilities(
     source: FlexibilitySource,
@@ -131,27 +150,30 @@ pub fn strip_flexibilities(
     j: usize,
     b_floor: f64,
     table: &HertzShapeTable,
-    equivalent: &EllipticContact,
+    equivalent: &EquivalentEllipse,
     creepage: &Creepage,
 ) -> Result<[f64; 3], InputError> {
-    let (a, b) = match source {
-        FlexibilitySource::EquivalentEllipse => (equivalent.a, equivalent.b),
-        FlexibilitySource::ModelLocal if sol.local_axes[j].0 > 0.0 => sol.local_axes[j],
+    let e = &equivalent.contact;
+    let (a, b, c) = match source {
+        FlexibilitySource::EquivalentEllipse => (e.a, e.b, equivalent.coefficients),
+        FlexibilitySource::ModelLocal if sol.local_axes[j].0 > 0.0 => {
+            let (a, b) = sol.local_axes[j];
+            (a, b, creep_coefficients(a, b, e.nu)?)
+        }
         FlexibilitySource::ModelLocal | FlexibilitySource::LocalHertz => {
             let shape = table.lookup(geom.curv_a[j], geom.curv_b[j].max(b_floor))?;
             let a = sol.half_length[j];
-            (a, a / shape.a_over_b)
+            let b = a / shape.a_over_b;
+            (a, b, creep_coefficients(a, b, e.nu)?)
         }
     };
-    let c = creep_coefficients(a, b, equivalent.nu)?;
-    let three = three_flexibilities(a, b, equivalent.shear_modulus, &c);
+    let three = three_flexibilities(a, b, e.shear_modulus, &c);
     Ok(match option {
         Flexibility::Three => three,
         Flexibility::Single => [single_flexibility(three, creepage, (a * b).sqrt()); 3],
         Flexibility::Blended => {
             // F4's weight from the patch (equivalent ellipse, total N), L× from the strip's own.
-            let c_e = creep_coefficients(equivalent.a, equivalent.b, equivalent.nu)?;
-            let w = blending_weight(equivalent, &c_e, creepage);
+            let w = blending_weight(e, &equivalent.coefficients, creepage);
             blend_flexibilities(three, a, creepage, w)
         }
     })

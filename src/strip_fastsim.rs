@@ -177,11 +177,6 @@ impl StripFastsim {
         })
     }
 
-    /// Elements per strip.
-    pub fn nx(&self) -> usize {
-        self.nx
-    }
-
     /// Solves the patch made of `strips` (at most [`MAX_STRIPS`]; strips out of contact are
     /// skipped) with friction `mu` and rolling speed `speed` ≥ 0 [m/s] (scales the power only).
     /// Strips with non-finite or non-positive flexibilities carry no traction. No allocation.
@@ -262,23 +257,21 @@ impl StripFastsim {
 
     /// FaStrip (`crate::fastrip`, Sichani et al. 2016) on the same strips: the strip-theory
     /// tractions in each strip's adhesion zone, μ p in the FASTSIM pass's direction in its slip
-    /// zone, with FS1's dimensionless creepages from the patch's equivalent ellipse (`a_e`,
-    /// `b_e` [m], Kalker coefficients `coefficients`, peak pressure `p0_e` = 3N/(2π a_e b_e)) and
-    /// each strip's own creepages (the strip's spin also in the lever term), shear modulus `g`,
-    /// Poisson ratio `nu`. Same outputs and buffers as [`StripFastsim::solve`]; no allocation.
-    #[allow(clippy::too_many_arguments)]
+    /// zone, with FS1's dimensionless creepages from the patch's equivalent ellipse `equivalent`
+    /// (its Kalker coefficients and peak pressure 3N/(2π a_e b_e)) and each strip's own creepages
+    /// (the strip's spin also in the lever term). Same outputs and buffers as
+    /// [`StripFastsim::solve`]; no allocation.
     pub fn solve_fastrip(
         &mut self,
         strips: &[TangentialStrip],
-        (a_e, b_e, p0_e): (f64, f64, f64),
-        coefficients: &crate::kalker::CreepCoefficients,
-        g: f64,
-        nu: f64,
-        mu: f64,
+        equivalent: &crate::patch_tangential::EquivalentEllipse,
         speed: f64,
     ) -> StripFastsimResult {
         use crate::fastrip::{solve_strip, FastripScales, FastripStrip};
         let nx = self.nx;
+        let e = &equivalent.contact;
+        let (a_e, b_e, g, nu, mu) = (e.a, e.b, e.shear_modulus, e.nu, e.mu);
+        let (coefficients, p0_e) = (&equivalent.coefficients, equivalent.peak_pressure());
         self.run(strips, speed, |strip, px_row, py_row, slip_row| {
             if !(strip.half_length > 0.0 && strip.pmax > 0.0 && strip.width > 0.0) {
                 return None;

@@ -29,13 +29,10 @@ use crate::contact_search::{
     ContactCandidates, ContactPoint, Region, SearchError, SidePose, WheelOnRail,
 };
 use crate::error::InputError;
-use crate::fastsim::Flexibility;
 use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use crate::hertz::{contact_modulus, shear_modulus};
 use crate::load_balance::balance;
-use crate::patch_tangential::{
-    equivalent_ellipse, strip_flexibilities, FlexibilitySource, TangentialMaterial, TangentialModel,
-};
+use crate::patch_tangential::{strip_flexibilities, EquivalentEllipse, TangentialModel};
 use crate::point_contact::Material;
 use crate::profile::Profile;
 use crate::strip_fastsim::{StripFastsim, TangentialStrip};
@@ -612,7 +609,8 @@ fn contact_axes(sigma: f64, gamma: f64) -> ([f64; 3], [f64; 3]) {
 /// Track-axes vector of a tangential force (fx, fy) in the contact axes at angle `gamma`.
 fn planar_tangential(sigma: f64, gamma: f64, fx: f64, fy: f64) -> [f64; 3] {
     let (e_y, _) = contact_axes(sigma, gamma);
-    [fx + fy * e_y[0], fy * e_y[1], fy * e_y[2]]
+    // e_x = (1, 0, 0) and e_y has no x component.
+    [fx, fy * e_y[1], fy * e_y[2]]
 }
 
 /// Stores a completed patch `result` in the next slot of `out` and adds its force — the
@@ -688,42 +686,53 @@ fn strip_point(patch: &StripPatch, j: usize) -> ContactPoint {
     }
 }
 
-/// The non-planar part of the creepages at strip point `p` (lever `lever` along e_y from the
-/// reference point `reference`): the strip's creepages in its own axes minus what a flat patch
-/// would give there, (ξ_ref − φ_ref·lever, η_ref, φ_ref) (physics.md §5.9). From the wheelset
-/// kinematics; with prescribed creepages, from pure rolling at the nominal wheel radius (the
-/// prescribed creepages hold at the reference point).
-fn non_planar_increment(
-    input: &WheelsetInput,
+/// The kinematics of a non-planar patch (physics.md §5.9): the rigid-body motion the strips'
+/// creepages come from — the wheelset's own, or with prescribed creepages (which hold at the
+/// reference point) pure rolling at the nominal wheel radius — and its creepages at the patch's
+/// reference point.
+struct NonPlanar {
+    kinematics: WheelsetInput,
     sigma: f64,
-    wheel_radius: f64,
-    reference: &ContactPoint,
-    p: &ContactPoint,
-    lever: f64,
-) -> Creepage {
-    let rolling;
-    let kinematics = match input.creepages {
-        Creepages::Kinematic { .. } => input,
-        Creepages::Prescribed { vx, .. } => {
-            let v = vx.abs().max(V_MIN);
-            rolling = WheelsetInput {
-                creepages: Creepages::Kinematic {
-                    vx: v,
-                    vy: 0.0,
-                    yaw_rate: 0.0,
-                    omega: v / wheel_radius,
-                },
-                ..*input
-            };
-            &rolling
+    at_reference: Creepage,
+}
+
+impl NonPlanar {
+    fn new(input: &WheelsetInput, sigma: f64, wheel_radius: f64, reference: &ContactPoint) -> Self {
+        let kinematics = match input.creepages {
+            Creepages::Kinematic { .. } => *input,
+            Creepages::Prescribed { vx, .. } => {
+                let v = vx.abs().max(V_MIN);
+                WheelsetInput {
+                    creepages: Creepages::Kinematic {
+                        vx: v,
+                        vy: 0.0,
+                        yaw_rate: 0.0,
+                        omega: v / wheel_radius,
+                    },
+                    ..*input
+                }
+            }
+        };
+        let (at_reference, _) =
+            creepages_at(&kinematics, sigma, reference, reference.contact_angle);
+        Self {
+            kinematics,
+            sigma,
+            at_reference,
         }
-    };
-    let (here, _) = creepages_at(kinematics, sigma, p, p.contact_angle);
-    let (there, _) = creepages_at(kinematics, sigma, reference, reference.contact_angle);
-    Creepage {
-        xi: here.xi - (there.xi - there.phi * lever),
-        eta: here.eta - there.eta,
-        phi: here.phi - there.phi,
+    }
+
+    /// The non-planar part of the creepages at strip point `p` (lever `lever` along e_y from the
+    /// reference point): the strip's creepages in its own axes minus what a flat patch would
+    /// give there, (ξ_ref − φ_ref·lever, η_ref, φ_ref).
+    fn increment(&self, p: &ContactPoint, lever: f64) -> Creepage {
+        let (here, _) = creepages_at(&self.kinematics, self.sigma, p, p.contact_angle);
+        let there = &self.at_reference;
+        Creepage {
+            xi: here.xi - (there.xi - there.phi * lever),
+            eta: here.eta - there.eta,
+            phi: here.phi - there.phi,
+        }
     }
 }
 
@@ -751,40 +760,20 @@ fn strip_patch_result(
     };
     let gamma = reference.contact_angle;
     let (creepage, speed) = creepages_at(input, side.sigma, &reference, gamma);
-    let (a_e, b_e) = equivalent_ellipse(summary);
     let settings = ctx.settings;
-    let m = TangentialMaterial {
-        shear_modulus: ctx.shear_modulus,
-        nu: ctx.material.poisson_ratio,
-        mu: ctx.material.friction,
-    };
-    let equivalent = EllipticContact {
-        a: a_e,
-        b: b_e,
-        normal_force: summary.normal_force,
-        shear_modulus: m.shear_modulus,
-        nu: m.nu,
-        mu: m.mu,
-    };
+    let equivalent = EquivalentEllipse::of(
+        summary,
+        ctx.shear_modulus,
+        ctx.material.poisson_ratio,
+        ctx.material.friction,
+    )?;
     let source = settings
         .tangential
         .flexibility_source(settings.normal_model);
-    let table = ctx.table;
     let b_floor = ctx.strips.params.b_floor();
+    let non_planar = (!settings.planar_patch)
+        .then(|| NonPlanar::new(input, side.sigma, settings.setup.wheel_radius, &reference));
     let n = patch.geom.len();
-    // The equivalent ellipse's three flexibilities are the same on every strip: computed once.
-    let shared_flexibility = (source == FlexibilitySource::EquivalentEllipse
-        && settings.fastsim.flexibility == Flexibility::Three)
-        .then(|| {
-            let c = crate::kalker::creep_coefficients(a_e, b_e, m.nu)?;
-            Ok::<_, InputError>(crate::fastsim::three_flexibilities(
-                a_e,
-                b_e,
-                m.shear_modulus,
-                &c,
-            ))
-        })
-        .transpose()?;
     for j in 0..n {
         let lever = side.sigma * (patch.geom.s[j] - sc);
         let mut strip = TangentialStrip {
@@ -798,53 +787,34 @@ fn strip_patch_result(
             reference_spin: creepage.phi,
         };
         if strip.half_length > 0.0 {
-            if !settings.planar_patch {
-                let d = non_planar_increment(
-                    input,
-                    side.sigma,
-                    settings.setup.wheel_radius,
-                    &reference,
-                    &strip_point(patch, j),
-                    lever,
-                );
+            if let Some(non_planar) = &non_planar {
+                let d = non_planar.increment(&strip_point(patch, j), lever);
                 strip.creepage = Creepage {
                     xi: creepage.xi + d.xi,
                     eta: creepage.eta + d.eta,
                     phi: creepage.phi + d.phi,
                 };
             }
-            strip.flexibility = match shared_flexibility {
-                Some(l) => l,
-                None => strip_flexibilities(
-                    source,
-                    settings.fastsim.flexibility,
-                    &patch.geom,
-                    &patch.sol,
-                    j,
-                    b_floor,
-                    table,
-                    &equivalent,
-                    &strip.creepage,
-                )?,
-            };
+            strip.flexibility = strip_flexibilities(
+                source,
+                settings.fastsim.flexibility,
+                &patch.geom,
+                &patch.sol,
+                j,
+                b_floor,
+                ctx.table,
+                &equivalent,
+                &strip.creepage,
+            )?;
         }
         side.tangential_strips[j] = strip;
     }
     let solver = &mut side.strip_fastsim[slot];
+    let mu = ctx.material.friction;
     let t = if settings.tangential == TangentialModel::Fastrip {
-        let c_e = crate::kalker::creep_coefficients(a_e, b_e, m.nu)?;
-        let p0_e = 1.5 * summary.normal_force / (std::f64::consts::PI * a_e * b_e);
-        solver.solve_fastrip(
-            &side.tangential_strips[..n],
-            (a_e, b_e, p0_e),
-            &c_e,
-            m.shear_modulus,
-            m.nu,
-            m.mu,
-            speed,
-        )
+        solver.solve_fastrip(&side.tangential_strips[..n], &equivalent, speed)
     } else {
-        solver.solve(&side.tangential_strips[..n], m.mu, speed)
+        solver.solve(&side.tangential_strips[..n], mu, speed)
     };
     // Forces: planar — all strips in the patch's axes; non-planar — each strip's in its own.
     let mut tangential = [0.0; 3];
@@ -872,8 +842,8 @@ fn strip_patch_result(
         mz: t.mz,
         area: summary.area,
         pmax: summary.pmax,
-        a: a_e,
-        b: b_e,
+        a: equivalent.contact.a,
+        b: equivalent.contact.b,
         length: summary.length,
         width: summary.width,
         y_rail: reference.y_rail,
