@@ -881,47 +881,59 @@ fn solve_strips(
     touch: f64,
     out: &mut SideResult,
 ) -> Result<(), WheelsetError> {
-    let Some(mut strips) = side.strips.take() else {
+    if side.strips.is_none() {
         return Ok(());
-    };
+    }
     let table = ctx.table;
-    let hint = out.z;
-    let solve = |strips: &mut StripSide, side: &Side, target: Option<f64>, hint: f64| {
-        strips.solve(
-            &side.geometry,
-            &side.candidates,
-            &ctx.strips,
-            table,
-            target,
-            touch,
-            hint,
-        )
-    };
-    // The creep forces' vertical component, from the Hertz solution first; further passes
-    // correct it with the strip model's own creep forces (a fixed point that converges fast:
-    // the creep forces scale with the normal force, and only their vertical part, ≤ μN sin γ,
-    // enters).
-    let mut creep = creep_upward(out);
-    let mut fixed_point = CreepFixedPoint::default();
-    let mut dz = hint;
-    for pass in 0..CREEP_PASSES {
-        let target = load.map(|q| (q - creep).max(MIN_NORMAL_SHARE * q));
+    let mut dz = out.z;
+    // One pass: the strip solve (the first, or without a load) or its re-balance to `target`,
+    // then the tangential problem at the new lowering; returns the creep forces' vertical
+    // component.
+    let mut pass = |side: &mut Side, k: usize, target: Option<f64>| {
+        let mut strips = side.strips.take().expect("strip buffers are present");
         dz = match target {
-            Some(t) if pass > 0 => strips.rebalance(&ctx.strips, table, t, touch, dz),
-            _ => solve(&mut strips, side, target, dz),
+            Some(t) if k > 0 => strips.rebalance(&ctx.strips, table, t, touch, dz),
+            _ => strips.solve(
+                &side.geometry,
+                &side.candidates,
+                &ctx.strips,
+                table,
+                target,
+                touch,
+                dz,
+            ),
         };
         side.strips = Some(strips);
         evaluate_strips(side, ctx, input, dz, out)?;
-        let new_creep = creep_upward(out);
-        let Some(q) = load else { break };
-        if pass + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
+        Ok::<_, WheelsetError>(creep_upward(out))
+    };
+    match load {
+        None => pass(side, 0, None).map(|_| ()),
+        Some(q) => creep_passes(q, |k, target| Ok(Some(pass(side, k, Some(target))?))),
+    }
+}
+
+/// The prescribed wheel load `q` [N] is carried by the normal forces and the creep forces'
+/// vertical component together. `pass(k, target)` balances the normal forces against `target`
+/// = q less the current estimate of that component, solves the tangential problem there and
+/// returns the component it finds (`None`: no tangential problem, stop). The estimate is updated
+/// by [`CreepFixedPoint`] until it changes by at most [`CREEP_TOLERANCE`] of q, or for
+/// [`CREEP_PASSES`] passes; it starts from zero.
+fn creep_passes(
+    q: f64,
+    mut pass: impl FnMut(usize, f64) -> Result<Option<f64>, WheelsetError>,
+) -> Result<(), WheelsetError> {
+    let mut creep = 0.0;
+    let mut fixed_point = CreepFixedPoint::default();
+    for k in 0..CREEP_PASSES {
+        let target = (q - creep).max(MIN_NORMAL_SHARE * q);
+        let Some(new_creep) = pass(k, target)? else {
+            break;
+        };
+        if k + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
             break;
         }
         creep = fixed_point.next(creep, new_creep);
-        strips = side
-            .strips
-            .take()
-            .expect("strip buffers were just returned");
     }
     Ok(())
 }
@@ -1004,10 +1016,7 @@ fn hertz_side(
     let stiffness = unit.normal_force / 1e-4f64.powf(1.5);
     let cos_g = deepest.contact_angle.cos().max(0.05);
     let hi_pen = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
-    let mut creep = 0.0;
-    let mut fixed_point = CreepFixedPoint::default();
-    for pass in 0..CREEP_PASSES {
-        let target = (q - creep).max(MIN_NORMAL_SHARE * q);
+    creep_passes(q, |_, target| {
         let balanced = balance(touch, hi_pen, target, LOAD_ITERATIONS, |dz| {
             Ok::<_, InputError>(evaluate_side(side, ctx, input, dz, out, false)? - target)
         })?;
@@ -1015,16 +1024,11 @@ fn hertz_side(
             if !balanced.evaluated {
                 evaluate_side(side, ctx, input, balanced.lowering, out, false)?;
             }
-            return Ok(());
+            return Ok(None);
         }
         evaluate_side(side, ctx, input, balanced.lowering, out, true)?;
-        let new_creep = creep_upward(out);
-        if pass + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
-            break;
-        }
-        creep = fixed_point.next(creep, new_creep);
-    }
-    Ok(())
+        Ok(Some(creep_upward(out)))
+    })
 }
 
 /// Fixed-point iteration c ← g(c) on the creep forces' vertical component, accelerated by the
