@@ -92,6 +92,67 @@ pub struct CubicSpline {
     /// Value and slope at the last knot (for the right-hand linear continuation).
     end_value: f64,
     end_slope: f64,
+    /// Interval lookup.
+    index: IntervalIndex,
+}
+
+/// Uniform cells over [y₁, yₙ] mapping a coordinate to the interval that contains the cell's
+/// start: the interval of y is then found among the few knots inside its cell.
+#[derive(Debug, Clone, PartialEq)]
+struct IntervalIndex {
+    /// y₁ and 1/cell width.
+    y0: f64,
+    inv_cell: f64,
+    /// `first[k]`: the interval containing the start of cell k; `first[cells]` = n − 2.
+    first: Vec<u32>,
+}
+
+/// Cells per knot interval of the index (2: a cell holds on average half an interval, so the
+/// search inside a cell is one comparison for evenly spaced knots).
+const CELLS_PER_INTERVAL: usize = 2;
+
+impl IntervalIndex {
+    fn new(knots: &[f64]) -> Self {
+        let n = knots.len();
+        let cells = CELLS_PER_INTERVAL * (n - 1);
+        let (y0, yn) = (knots[0], knots[n - 1]);
+        let width = (yn - y0) / cells as f64;
+        let first = (0..=cells)
+            .map(|k| {
+                let y = y0 + width * k as f64;
+                (knots.partition_point(|&v| v <= y).saturating_sub(1)).min(n - 2) as u32
+            })
+            .collect();
+        Self {
+            y0,
+            inv_cell: 1.0 / width,
+            first,
+        }
+    }
+
+    /// The interval i with knots[i] ≤ y < knots[i + 1], for y₁ < y < yₙ.
+    #[inline]
+    fn interval(&self, knots: &[f64], y: f64) -> usize {
+        let cells = self.first.len() - 1;
+        let k = (((y - self.y0) * self.inv_cell) as usize).min(cells - 1);
+        let (lo, hi) = (self.first[k] as usize, self.first[k + 1] as usize);
+        let mut i = if hi - lo > 8 {
+            // A cluster of knots in this cell: binary search within it.
+            lo + knots[lo + 1..=hi].partition_point(|&v| v <= y)
+        } else {
+            lo
+        };
+        // Walk to the interval (a step or two at most; also absorbs a cell index rounded to
+        // the neighbouring cell).
+        let last = knots.len() - 2;
+        while i < last && knots[i + 1] <= y {
+            i += 1;
+        }
+        while i > 0 && knots[i] > y {
+            i -= 1;
+        }
+        i
+    }
 }
 
 impl CubicSpline {
@@ -226,6 +287,7 @@ impl CubicSpline {
             return Err(SplineError::Numerical);
         }
         Ok(Self {
+            index: IntervalIndex::new(y),
             knots: y.to_vec(),
             coef,
             end_value,
@@ -268,11 +330,7 @@ impl CubicSpline {
             );
         }
         // First knot > y, minus one: y_i ≤ y < y_{i+1}, 0 ≤ i ≤ n − 2.
-        let i = self
-            .knots
-            .partition_point(|&k| k <= y)
-            .saturating_sub(1)
-            .min(n - 2);
+        let i = self.index.interval(&self.knots, y);
         let [a, b, c, d] = self.coef[i];
         let t = y - self.knots[i];
         (
@@ -375,6 +433,35 @@ mod tests {
             let u1 = self.next().max(1e-300);
             let u2 = self.next();
             (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
+        }
+    }
+
+    #[test]
+    fn interval_index_agrees_with_binary_search_on_uneven_and_clustered_knots() {
+        // Uneven spacing, a cluster of 30 knots 1e-9 apart (like the benchmark rail's flanks),
+        // and queries at random points, at every knot and just beside every knot.
+        let mut rng = Lcg(7);
+        let mut y = vec![0.0];
+        for i in 1..200 {
+            let step = if (80..110).contains(&i) {
+                1e-9
+            } else {
+                1e-4 * (0.2 + 3.0 * rng.next())
+            };
+            y.push(y[i - 1] + step);
+        }
+        let index = IntervalIndex::new(&y);
+        let (y0, yn) = (y[0], y[y.len() - 1]);
+        let mut queries: Vec<f64> = (0..5000).map(|_| y0 + (yn - y0) * rng.next()).collect();
+        for &k in &y[1..y.len() - 1] {
+            queries.extend([k, k * (1.0 + 1e-15), k * (1.0 - 1e-15)]);
+        }
+        for q in queries.into_iter().filter(|&q| q > y0 && q < yn) {
+            let expected = y
+                .partition_point(|&k| k <= q)
+                .saturating_sub(1)
+                .min(y.len() - 2);
+            assert_eq!(index.interval(&y, q), expected, "y = {q:e}");
         }
     }
 
