@@ -14,6 +14,14 @@ pub const LOAD_TOLERANCE: f64 = 1e-9;
 /// Largest approach tried while bracketing [m] (5 cm is far beyond any elastic contact).
 const MAX_APPROACH: f64 = 0.05;
 
+/// Relative overshoot of the Hertzian predictor while bracketing: 2 % in the approach, so a
+/// force law a little stiffer or softer than δ^{3/2} (strip models, a second patch) is still
+/// bracketed in one trial.
+const PREDICTOR_MARGIN: f64 = 0.02;
+
+/// Bracketing trials (doubling from 1e−9 m reaches MAX_APPROACH in 26).
+const BRACKET_TRIALS: usize = 64;
+
 /// Result of [`balance`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Balanced {
@@ -27,6 +35,12 @@ pub struct Balanced {
 /// [`LOAD_TOLERANCE`] × load), given the touching lowering `touch` (where the residual is
 /// −load), a first approach estimate `first_approach` > 0 [m] and at most `iterations` Illinois
 /// steps. Errors of `residual` are passed on.
+///
+/// Bracketing starts at the first estimate, which is accepted at once when it balances the load
+/// (a warm start from the previous step). Otherwise the next trial comes from the Hertzian law
+/// F ∝ δ^{3/2} through the last point (aimed [`PREDICTOR_MARGIN`] beyond the root, so that it
+/// brackets it; at most doubling or halving the approach per trial) until the root is bracketed;
+/// the Illinois steps then work in that tight bracket.
 pub fn balance<E>(
     touch: f64,
     first_approach: f64,
@@ -35,17 +49,54 @@ pub fn balance<E>(
     mut residual: impl FnMut(f64) -> Result<f64, E>,
 ) -> Result<Balanced, E> {
     let (mut lo, mut f_lo) = (touch, -load);
-    let mut approach = first_approach;
-    let (mut hi, mut f_hi);
-    loop {
-        hi = touch + approach;
-        f_hi = residual(hi)?;
-        if f_hi > 0.0 || approach > MAX_APPROACH {
-            break;
+    let (mut hi, mut f_hi) = (f64::NAN, f64::NAN);
+    let mut approach = first_approach.max(f64::MIN_POSITIVE);
+    for _ in 0..BRACKET_TRIALS {
+        let dz = touch + approach;
+        let f = residual(dz)?;
+        if f.abs() <= LOAD_TOLERANCE * load {
+            return Ok(Balanced {
+                lowering: dz,
+                evaluated: true,
+            });
         }
-        lo = hi;
-        f_lo = f_hi;
-        approach *= 2.0;
+        let force = f + load;
+        if f > 0.0 {
+            (hi, f_hi) = (dz, f);
+            if dz - lo <= LOAD_TOLERANCE * approach || f_lo > -load {
+                // Bracketed on both sides by evaluated points.
+                break;
+            }
+            // Too deep: predict the root from below.
+            let ratio = (load / force).powf(2.0 / 3.0) * (1.0 - PREDICTOR_MARGIN);
+            let next = approach * ratio.max(0.5);
+            if touch + next <= lo {
+                break;
+            }
+            approach = next;
+        } else {
+            (lo, f_lo) = (dz, f);
+            if f_hi > 0.0 {
+                break;
+            }
+            if approach > MAX_APPROACH {
+                break;
+            }
+            let ratio = if force > 0.0 {
+                (load / force).powf(2.0 / 3.0) * (1.0 + PREDICTOR_MARGIN)
+            } else {
+                2.0
+            };
+            approach *= ratio.clamp(1.0 + PREDICTOR_MARGIN, 2.0);
+        }
+    }
+    if !(f_hi > 0.0) {
+        // No point above the load (the force stays below it up to MAX_APPROACH): the deepest
+        // point tried is the answer the caller gets, as before.
+        return Ok(Balanced {
+            lowering: lo,
+            evaluated: true,
+        });
     }
     let mut kept = 0i8;
     let mut last = hi;

@@ -279,7 +279,7 @@ impl StripSide {
             };
             self.build_from_regions(geometry, candidates, dz_range, settings, table);
             dz = match target {
-                Some(q) => self.iterate(q, touch, dz_range, &params, table),
+                Some(q) => self.iterate(q, touch, approach, &params, table),
                 None => {
                     self.vertical_force(dz_hint, &params, table);
                     dz_hint
@@ -293,10 +293,7 @@ impl StripSide {
         }
         // The re-striped patches are solved afresh.
         match target {
-            Some(q) => {
-                let hi = touch + RANGE_FACTOR * (dz - touch).max(approach);
-                self.iterate(q, touch, hi, &params, table)
-            }
+            Some(q) => self.iterate(q, touch, dz - touch, &params, table),
             None => {
                 self.vertical_force(dz, &params, table);
                 dz
@@ -315,21 +312,20 @@ impl StripSide {
         touch: f64,
         dz: f64,
     ) -> f64 {
-        let hi = touch + RANGE_FACTOR * (dz - touch).max(0.0);
-        self.iterate(target, touch, hi, &settings.params, table)
+        self.iterate(target, touch, dz - touch, &settings.params, table)
     }
 
-    /// The lowering at which the vertical force equals `q` > 0 ([`balance`], first trial at
-    /// `hi`); the patches' solutions are left at that lowering.
+    /// The lowering at which the vertical force equals `q` > 0 ([`balance`], first trial at the
+    /// approach `approach` beyond `touch`); the patches' solutions are left at that lowering.
     fn iterate(
         &mut self,
         q: f64,
         touch: f64,
-        hi: f64,
+        approach: f64,
         params: &NormalParams,
         table: &HertzShapeTable,
     ) -> f64 {
-        let first = (hi - touch).max(1e-9);
+        let first = approach.max(1e-9);
         let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, |dz| {
             Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q)
         });

@@ -255,6 +255,21 @@ struct Side {
     tangential_strips: Vec<TangentialStrip>,
     /// `y_rail` of the Hertz patches of the last evaluation (for their traction field).
     last_y_rail: [f64; MAX_PATCHES],
+    /// The last prescribed-load solution, the next one's starting point.
+    warm: Option<WarmStart>,
+}
+
+/// Where the prescribed-load iteration of a wheel starts: the previous step's solution. With it a
+/// step whose inputs changed little needs one tangential solve and a few cheap normal-force
+/// evaluations instead of a cold search. Part of the FMU state (outputs depend on it at the
+/// level of the iteration tolerances).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WarmStart {
+    /// Lowering beyond first touch at which the multi-Hertzian normal forces carried the load
+    /// [m] (> 0; for the strip models their normal-only Hertz estimate).
+    pub approach: f64,
+    /// Vertical component of the creep forces on the wheel, upwards positive [N].
+    pub creep: f64,
 }
 
 /// A wheelset contact solver; owns every buffer, so [`Wheelset::solve`] does not allocate.
@@ -311,6 +326,7 @@ impl Wheelset {
                 },
                 tangential_strips: vec![TangentialStrip::default(); MAX_STRIPS],
                 last_y_rail: [0.0; MAX_PATCHES],
+                warm: None,
             })
         };
         Ok(Self {
@@ -388,6 +404,17 @@ impl Wheelset {
             })
             .collect();
         (!field.is_empty()).then_some(field)
+    }
+
+    /// The warm starts of the load iteration, `[left, right]` (`None`: the next solve starts
+    /// cold). Save them with the outputs to reproduce a run from a restored state.
+    pub fn warm_start(&self) -> [Option<WarmStart>; 2] {
+        [self.left.warm, self.right.warm]
+    }
+
+    /// Replaces the warm starts (`[left, right]`; `None` for a cold start), e.g. from a saved state.
+    pub fn set_warm_start(&mut self, warm: [Option<WarmStart>; 2]) {
+        [self.left.warm, self.right.warm] = warm;
     }
 
     /// Solves both wheels.
@@ -871,71 +898,88 @@ fn creep_upward(out: &SideResult) -> f64 {
     -out.force[2] - normal
 }
 
-/// Replaces the Hertz solution in `out` by the side's strip model: `load` prescribed (the Hertz
-/// solution's lowering is the starting guess) or the lowering `z`.
+/// Replaces the Hertz solution in `out` by the side's strip model: `load` prescribed (`out.z`,
+/// the Hertz solution's lowering or the warm start's, is the starting guess, and `creep` the
+/// first estimate of the creep forces' vertical component) or the lowering `out.z`. Returns the
+/// last evaluated creep component (prescribed load only).
 fn solve_strips(
     side: &mut Side,
     ctx: &Context,
     input: &WheelsetInput,
     load: Option<f64>,
     touch: f64,
+    creep: f64,
     out: &mut SideResult,
-) -> Result<(), WheelsetError> {
+) -> Result<Option<f64>, WheelsetError> {
     if side.strips.is_none() {
-        return Ok(());
+        return Ok(None);
     }
     let table = ctx.table;
     let mut dz = out.z;
     // One pass: the strip solve (the first, or without a load) or its re-balance to `target`,
     // then the tangential problem at the new lowering; returns the creep forces' vertical
     // component.
+    // The first pass lays the strips out for the load alone (not less a creep estimate that
+    // depends on the previous step), then re-balances to the pass's target on those strips.
     let mut pass = |side: &mut Side, k: usize, target: Option<f64>| {
         let mut strips = side.strips.take().expect("strip buffers are present");
         dz = match target {
             Some(t) if k > 0 => strips.rebalance(&ctx.strips, table, t, touch, dz),
-            _ => strips.solve(
-                &side.geometry,
-                &side.candidates,
-                &ctx.strips,
-                table,
-                target,
-                touch,
-                dz,
-            ),
+            _ => {
+                let dz = strips.solve(
+                    &side.geometry,
+                    &side.candidates,
+                    &ctx.strips,
+                    table,
+                    load.or(target),
+                    touch,
+                    dz,
+                );
+                match (target, load) {
+                    (Some(t), Some(q)) if t != q => {
+                        strips.rebalance(&ctx.strips, table, t, touch, dz)
+                    }
+                    _ => dz,
+                }
+            }
         };
         side.strips = Some(strips);
         evaluate_strips(side, ctx, input, dz, out)?;
         Ok::<_, WheelsetError>(creep_upward(out))
     };
     match load {
-        None => pass(side, 0, None).map(|_| ()),
-        Some(q) => creep_passes(q, |k, target| Ok(Some(pass(side, k, Some(target))?))),
+        None => pass(side, 0, None).map(|_| None),
+        Some(q) => creep_passes(q, creep, |k, target| Ok(Some(pass(side, k, Some(target))?))),
     }
 }
 
 /// The prescribed wheel load `q` [N] is carried by the normal forces and the creep forces'
 /// vertical component together. `pass(k, target)` balances the normal forces against `target`
 /// = q less the current estimate of that component, solves the tangential problem there and
-/// returns the component it finds (`None`: no tangential problem, stop). The estimate is updated
-/// by [`CreepFixedPoint`] until it changes by at most [`CREEP_TOLERANCE`] of q, or for
-/// [`CREEP_PASSES`] passes; it starts from zero.
+/// returns the component it finds (`None`: no tangential problem, stop). The estimate starts
+/// from `start` (zero, or the previous step's) and is updated by [`CreepFixedPoint`] until it
+/// changes by at most [`CREEP_TOLERANCE`] of q, or for [`CREEP_PASSES`] passes. Returns the last
+/// component found (`None` if no pass solved a tangential problem).
 fn creep_passes(
     q: f64,
+    start: f64,
     mut pass: impl FnMut(usize, f64) -> Result<Option<f64>, WheelsetError>,
-) -> Result<(), WheelsetError> {
-    let mut creep = 0.0;
+) -> Result<Option<f64>, WheelsetError> {
+    let mut creep = if start.is_finite() { start } else { 0.0 };
     let mut fixed_point = CreepFixedPoint::default();
+    let mut found = None;
     for k in 0..CREEP_PASSES {
         let target = (q - creep).max(MIN_NORMAL_SHARE * q);
         let Some(new_creep) = pass(k, target)? else {
             break;
         };
+        found = Some(new_creep);
         if k + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
             break;
         }
         creep = fixed_point.next(creep, new_creep);
     }
-    Ok(())
+    Ok(found)
 }
 
 fn solve_side(
@@ -965,10 +1009,25 @@ fn solve_side(
         .map(|c| c.gap)
         .fold(f64::INFINITY, f64::min);
     let strip_model = side.strips.is_some();
-    hertz_side(side, ctx, input, load, z, touch, out, !strip_model)?;
-    if load != Some(0.0) {
-        solve_strips(side, ctx, input, load, touch, out)?;
+    let warm = side.warm.take();
+    // The strip models start from the Hertz solution (normal forces only), so that their strips
+    // are laid out the same way whatever the previous step was; the warm start shortens that
+    // Hertz solution and the creep iteration.
+    let mut creep = hertz_side(side, ctx, input, load, z, touch, warm, out, !strip_model)?;
+    let approach = out.z - touch;
+    if strip_model && load != Some(0.0) {
+        let start = warm.map_or(0.0, |w| w.creep);
+        creep = solve_strips(side, ctx, input, load, touch, start, out)?;
     }
+    side.warm = match (load, creep) {
+        (Some(q), Some(creep)) if q > 0.0 && approach > 0.0 => Some(WarmStart { approach, creep }),
+        // A load without a tangential problem (Hertz without patches) keeps the approach.
+        (Some(q), None) if q > 0.0 && approach > 0.0 => Some(WarmStart {
+            approach,
+            creep: 0.0,
+        }),
+        _ => None,
+    };
     Ok(())
 }
 
@@ -978,7 +1037,9 @@ fn solve_side(
 /// Prescribed load: the normal forces are balanced against Q less the creep forces' vertical
 /// component by the load iteration on normal forces alone (cheap), then FASTSIM runs once at the
 /// balanced height; the creep component is updated by an accelerated fixed point
-/// ([`CreepFixedPoint`]) until it changes by less than [`CREEP_TOLERANCE`] of Q.
+/// ([`CreepFixedPoint`]) until it changes by less than [`CREEP_TOLERANCE`] of Q. `warm` (the
+/// previous step's solution) gives the first approach and creep estimate. Returns the last
+/// creep component found (`None` without a tangential problem).
 #[allow(clippy::too_many_arguments)]
 fn hertz_side(
     side: &mut Side,
@@ -987,12 +1048,13 @@ fn hertz_side(
     load: Option<f64>,
     z: f64,
     touch: f64,
+    warm: Option<WarmStart>,
     out: &mut SideResult,
     tangential: bool,
-) -> Result<(), WheelsetError> {
+) -> Result<Option<f64>, WheelsetError> {
     let Some(q) = load else {
         evaluate_side(side, ctx, input, z, out, tangential)?;
-        return Ok(());
+        return Ok(None);
     };
     if q == 0.0 {
         // Lift-off: the wheel just touches; no force.
@@ -1000,7 +1062,7 @@ fn hertz_side(
             z: touch,
             ..SideResult::default()
         };
-        return Ok(());
+        return Ok(None);
     }
     // First approach: a Hertzian estimate for the deepest point alone.
     let deepest = side
@@ -1015,11 +1077,15 @@ fn hertz_side(
         .patch(deepest.curv_a, deepest.curv_b, 1e-4, ctx.e_star)?;
     let stiffness = unit.normal_force / 1e-4f64.powf(1.5);
     let cos_g = deepest.contact_angle.cos().max(0.05);
-    let hi_pen = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
-    creep_passes(q, |_, target| {
-        let balanced = balance(touch, hi_pen, target, LOAD_ITERATIONS, |dz| {
+    let cold_approach = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
+    let (mut first_approach, start_creep) = warm.map_or((cold_approach, 0.0), |w| {
+        (w.approach, if tangential { w.creep } else { 0.0 })
+    });
+    creep_passes(q, start_creep, |_, target| {
+        let balanced = balance(touch, first_approach, target, LOAD_ITERATIONS, |dz| {
             Ok::<_, InputError>(evaluate_side(side, ctx, input, dz, out, false)? - target)
         })?;
+        first_approach = balanced.lowering - touch;
         if !tangential {
             if !balanced.evaluated {
                 evaluate_side(side, ctx, input, balanced.lowering, out, false)?;

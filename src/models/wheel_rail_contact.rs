@@ -12,8 +12,8 @@ use crate::profile::{Profile, ProfileKind};
 use crate::strips::NormalModel;
 use crate::track::TrackSetup;
 use crate::wheelset::{
-    Creepages, SideResult, Vertical, Wheelset, WheelsetError, WheelsetInput, WheelsetResult,
-    WheelsetSettings, MAX_PATCHES,
+    Creepages, SideResult, Vertical, WarmStart, Wheelset, WheelsetError, WheelsetInput,
+    WheelsetResult, WheelsetSettings, MAX_PATCHES,
 };
 use std::path::{Path, PathBuf};
 
@@ -385,5 +385,132 @@ impl Model for WheelRailContact {
         }
         write_side(values, false, &self.result.left)?;
         write_side(values, true, &self.result.right)
+    }
+
+    /// The load iteration's warm starts (`wheelset::WarmStart`, left then right): a version
+    /// byte, then per wheel a presence byte and the approach [m] and creep component [N] as
+    /// little-endian f64. Nothing before initialization.
+    fn save_state(&self, out: &mut Vec<u8>) {
+        let Some(solver) = &self.solver else {
+            return;
+        };
+        out.push(WARM_STATE_VERSION);
+        for warm in solver.wheelset.warm_start() {
+            out.push(u8::from(warm.is_some()));
+            let w = warm.unwrap_or(WarmStart {
+                approach: 0.0,
+                creep: 0.0,
+            });
+            out.extend_from_slice(&w.approach.to_le_bytes());
+            out.extend_from_slice(&w.creep.to_le_bytes());
+        }
+    }
+
+    fn restore_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        let Some(solver) = &mut self.solver else {
+            return if bytes.is_empty() {
+                Ok(())
+            } else {
+                Err(format!(
+                    "FMU state holds {} bytes of warm start for an instance that is not initialized",
+                    bytes.len()
+                ))
+            };
+        };
+        solver.wheelset.set_warm_start(parse_warm_start(bytes)?);
+        Ok(())
+    }
+}
+
+/// Version of the warm-start layout in FMU states.
+const WARM_STATE_VERSION: u8 = 1;
+/// Bytes of one wheel's warm start: presence flag, approach, creep component.
+const WARM_SIDE_BYTES: usize = 1 + 2 * 8;
+
+/// Reads what [`Model::save_state`] wrote; rejects any other length, version or flag, and
+/// non-finite or non-positive approaches.
+fn parse_warm_start(bytes: &[u8]) -> Result<[Option<WarmStart>; 2], String> {
+    let expected = 1 + 2 * WARM_SIDE_BYTES;
+    if bytes.len() != expected || bytes[0] != WARM_STATE_VERSION {
+        return Err(format!(
+            "FMU state: warm start of {} bytes, version {:?} (expected {expected} bytes, version \
+             {WARM_STATE_VERSION})",
+            bytes.len(),
+            bytes.first()
+        ));
+    }
+    let mut warm = [None; 2];
+    for (side, chunk) in warm
+        .iter_mut()
+        .zip(bytes[1..].chunks_exact(WARM_SIDE_BYTES))
+    {
+        let f64_at = |i: usize| {
+            let mut b = [0u8; 8];
+            b.copy_from_slice(&chunk[i..i + 8]);
+            f64::from_le_bytes(b)
+        };
+        let (approach, creep) = (f64_at(1), f64_at(9));
+        *side = match chunk[0] {
+            0 => None,
+            1 if approach > 0.0 && approach.is_finite() && creep.is_finite() => {
+                Some(WarmStart { approach, creep })
+            }
+            flag => {
+                return Err(format!(
+                    "FMU state: invalid warm start (flag {flag}, approach {approach} m, creep \
+                     component {creep} N)"
+                ))
+            }
+        };
+    }
+    Ok(warm)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bytes_of(warm: [Option<WarmStart>; 2]) -> Vec<u8> {
+        let mut out = vec![WARM_STATE_VERSION];
+        for w in warm {
+            let w2 = w.unwrap_or(WarmStart {
+                approach: 0.0,
+                creep: 0.0,
+            });
+            out.push(u8::from(w.is_some()));
+            out.extend_from_slice(&w2.approach.to_le_bytes());
+            out.extend_from_slice(&w2.creep.to_le_bytes());
+        }
+        out
+    }
+
+    #[test]
+    fn warm_start_bytes_round_trip_and_corruption_is_rejected() {
+        let warm = [
+            None,
+            Some(WarmStart {
+                approach: 8.1e-5,
+                creep: -123.25,
+            }),
+        ];
+        let bytes = bytes_of(warm);
+        assert_eq!(parse_warm_start(&bytes), Ok(warm));
+        // Wrong length, version, flag; a non-positive or non-finite approach; a NaN creep.
+        assert!(parse_warm_start(&bytes[..bytes.len() - 1]).is_err());
+        let mut v = bytes.clone();
+        v[0] = 2;
+        assert!(parse_warm_start(&v).is_err());
+        let mut v = bytes.clone();
+        v[1] = 7;
+        assert!(parse_warm_start(&v).is_err());
+        for (approach, creep) in [
+            (0.0, 0.0),
+            (-1e-5, 0.0),
+            (f64::INFINITY, 0.0),
+            (1e-5, f64::NAN),
+        ] {
+            let v = bytes_of([Some(WarmStart { approach, creep }), None]);
+            assert!(parse_warm_start(&v).is_err(), "{approach} {creep}");
+        }
     }
 }
