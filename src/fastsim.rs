@@ -40,6 +40,15 @@
 //! In full adhesion the forces overshoot Kalker's linear theory by ≈ 1/n_j for a strip of n_j
 //! elements (+3.9 % at 40², +0.4 % at 320²).
 //!
+//! That first-order error comes from the march, not from the grid, so [`MarchScheme::Midpoint`]
+//! (the wheelset element's default, [`FastsimSettings::online`]) removes it: the leading element
+//! steps only from the strip's leading edge √(1 − Y²)·a to its centre, and the spin term of every
+//! step sits at the step's midpoint, so in adhesion the element-centre tractions are FASTSIM's
+//! continuous ones. Force error against a 800² grid (same scheme), CONTACT's scheme in brackets:
+//! oracle case 1.2 % at 20² (1.2 % at 40²; table in docs/performance.md), pure ξ in
+//! partial slip 0.25 % at 20² (3.3 % at 40²). CONTACT's scheme stays the library default
+//! ([`MarchScheme::Contact`]) and the `HertzContact` FMU's, whose oracle is CONTACT's printout.
+//!
 //! The pressure used in the bound is the analytic p_n at the element centres (like CONTACT); its
 //! discrete resultant Σ p_n ΔxΔy differs from N by the midpoint-rule error of the grid (+0.076 %
 //! at 40 × 40, elliptic). Full sliding therefore gives |F| = μ Σ p_n ΔxΔy, within that error of μN.
@@ -93,6 +102,43 @@ pub enum Flexibility {
     Blended,
 }
 
+/// How the F3 march integrates the rigid slip from one element to the next (physics.md §4.2; a
+/// documented choice, see the module header).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MarchScheme {
+    /// Second order: the leading element of a strip steps from the strip's leading edge to its
+    /// centre (the edge distance, not a full Δx), and the spin term φx of each step is taken at
+    /// the step's midpoint. In full adhesion the tractions at the element centres are then
+    /// FASTSIM's exact (continuous) ones and forces converge about as 1/n², so coarse grids are
+    /// accurate ([`FastsimSettings::online`]).
+    Midpoint,
+    /// CONTACT's scheme: every step a full Δx (the leading element too) with the spin term at
+    /// Δx/6 ([`SPIN_OFFSET_FRACTION`]). First order (forces +1/n in full adhesion); on the 40 × 40
+    /// grid it reproduces CONTACT's printed FASTSIM numbers digit for digit (default).
+    #[default]
+    Contact,
+}
+
+impl MarchScheme {
+    /// Where the spin term is evaluated within a step, as a fraction of the step towards the
+    /// leading edge.
+    pub fn spin_offset_fraction(self) -> f64 {
+        match self {
+            MarchScheme::Midpoint => 0.5,
+            MarchScheme::Contact => SPIN_OFFSET_FRACTION,
+        }
+    }
+
+    /// The leading element's step as a fraction of Δx, for a strip whose leading element centre
+    /// lies `edge_distance` Δx behind the strip's leading edge (in (0, 1]).
+    pub fn lead_fraction(self, edge_distance: f64) -> f64 {
+        match self {
+            MarchScheme::Midpoint => edge_distance,
+            MarchScheme::Contact => 1.0,
+        }
+    }
+}
+
 /// Grid and model options, fixed for the lifetime of a [`Fastsim`] (buffers are sized from them).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FastsimSettings {
@@ -104,6 +150,8 @@ pub struct FastsimSettings {
     pub bound: TractionBound,
     /// Flexibility model.
     pub flexibility: Flexibility,
+    /// Integration of the rigid slip along a strip.
+    pub scheme: MarchScheme,
 }
 
 /// Default grid: 40 × 40 elements inside the bounding box — CONTACT's grid for its `fastsim`
@@ -118,6 +166,26 @@ impl Default for FastsimSettings {
             ny: DEFAULT_GRID,
             bound: TractionBound::Elliptic,
             flexibility: Flexibility::Three,
+            scheme: MarchScheme::Contact,
+        }
+    }
+}
+
+/// Grid of [`FastsimSettings::online`]: with the second-order march, 20 × 20 elements (20 per
+/// strip on non-elliptic patches) stay within 1 % of the converged forces on the wheel–rail cases
+/// of docs/performance.md (Hertz patches ≤ 0.4 %, ANALYN strips ≤ 1.3 %), where CONTACT's
+/// first-order scheme is 1–3 % off even at 40 × 40.
+pub const ONLINE_GRID: usize = 20;
+
+impl FastsimSettings {
+    /// The wheelset element's settings (`WheelRailContact`'s defaults): second-order march on a
+    /// [`ONLINE_GRID`]² grid, elliptic bound, three flexibilities.
+    pub fn online() -> Self {
+        Self {
+            nx: ONLINE_GRID,
+            ny: ONLINE_GRID,
+            scheme: MarchScheme::Midpoint,
+            ..Self::default()
         }
     }
 }
@@ -288,10 +356,15 @@ struct StripMarch {
     x_first: f64,
     /// Element length Δx [m].
     dx: f64,
-    /// (η/L2 + φ·Δx/6 /L3)Δx: y increment at x = 0 [Pa].
+    /// (η/L2)Δx: y increment of a full step without the spin term [Pa].
     step_y_at_zero: f64,
-    /// (φ/L3)Δx: growth of the y increment with x [Pa/m].
+    /// (φ/L3)Δx: growth of the y increment with the x of the spin term [Pa/m].
     step_y_per_x: f64,
+    /// Position of the spin term within a full step, from the element centre towards the
+    /// leading edge [m].
+    spin_offset: f64,
+    /// The leading element's step as a fraction of Δx ([`MarchScheme::lead_fraction`]).
+    lead_fraction: f64,
     /// μ × peak pressure; the bound of an element is this times its shape factor [Pa].
     bound_scale: f64,
     /// Flexibilities converting traction changes into slip displacement, x and y [m/Pa].
@@ -340,13 +413,17 @@ impl StripMarch {
         let mut px = [0.0_f64; LANES];
         let mut py = [0.0_f64; LANES];
         let [lx, ly] = self.slip_flexibility;
+        // The leading element's step is `lead_fraction` of a full one, all later steps full.
+        let mut fraction = self.lead_fraction;
         for (i, &shape_factor) in shape.iter().enumerate().rev() {
             let x = self.x_first + i as f64 * self.dx;
-            let step_y = self.step_y_at_zero + self.step_y_per_x * x;
+            let f = fraction;
+            fraction = 1.0;
+            let step_y = f * (self.step_y_at_zero + self.step_y_per_x * (x + f * self.spin_offset));
             let bound = self.bound_scale * shape_factor;
             for lane in 0..LANES {
                 // Adhesion trial.
-                let trial_x = px[lane] - step_x[lane];
+                let trial_x = px[lane] - f * step_x[lane];
                 let trial_y = py[lane] - step_y;
                 let trial_sq = trial_x * trial_x + trial_y * trial_y;
                 let slipping = trial_sq > bound * bound;
@@ -443,6 +520,8 @@ pub struct Fastsim {
     shape: Vec<f64>,
     /// Contact elements of strip j are i ∈ [strip_range[j].0, strip_range[j].1).
     strip_range: Vec<(usize, usize)>,
+    /// The leading element's step per strip, as a fraction of Δx ([`MarchScheme`]).
+    lead_fraction: Vec<f64>,
     px: Vec<f64>,
     py: Vec<f64>,
     slipping: Vec<bool>,
@@ -467,6 +546,7 @@ impl Fastsim {
         let (nx, ny) = (settings.nx, settings.ny);
         let mut shape = vec![0.0; nx * ny];
         let mut strip_range = vec![(0, 0); ny];
+        let mut lead_fraction = vec![1.0; ny];
         for j in 0..ny {
             let yn = normalised_centre(j, ny);
             let mut first = None;
@@ -484,11 +564,19 @@ impl Fastsim {
                 }
             }
             strip_range[j] = first.map_or((0, 0), |f| (f, end));
+            if end > 0 {
+                // Leading edge X = √(1 − Y²); the last contact centre lies inside it, within
+                // one element (edge distance in units of Δx = 2/nx on the normalised grid).
+                let edge = (1.0 - yn * yn).sqrt();
+                let distance = (edge - normalised_centre(end - 1, nx)) * nx as f64 / 2.0;
+                lead_fraction[j] = settings.scheme.lead_fraction(distance.clamp(0.0, 1.0));
+            }
         }
         Ok(Self {
             settings,
             shape,
             strip_range,
+            lead_fraction,
             px: vec![0.0; nx * ny],
             py: vec![0.0; nx * ny],
             slipping: vec![false; nx * ny],
@@ -560,14 +648,14 @@ impl Fastsim {
         let (used, power_factor) = limit_overdrive(creepage, overdrive_of);
 
         // Per-step increments of F3: x part constant along a strip, y part linear in x, with the
-        // spin term at x + Δx/6 (SPIN_OFFSET_FRACTION).
-        let step_phi_x = used.phi / l3 * dx;
-        let spin_offset = SPIN_OFFSET_FRACTION * dx;
+        // spin term where the scheme puts it.
         let march = StripMarch {
             x_first: 0.0,
             dx,
-            step_y_at_zero: used.eta / l2 * dx + step_phi_x * spin_offset,
-            step_y_per_x: step_phi_x,
+            step_y_at_zero: used.eta / l2 * dx,
+            step_y_per_x: used.phi / l3 * dx,
+            spin_offset: self.settings.scheme.spin_offset_fraction() * dx,
+            lead_fraction: 1.0,
             bound_scale: bound_peak,
             slip_flexibility: [l1, l2],
         };
@@ -592,6 +680,7 @@ impl Fastsim {
             let y = b * normalised_centre(j, ny);
             let m = StripMarch {
                 x_first: -a + (first as f64 + 0.5) * dx,
+                lead_fraction: self.lead_fraction[j],
                 ..march
             };
             let mirror = ny - 1 - j;
@@ -726,12 +815,14 @@ mod tests {
     /// CONTACT's rolling speed in the oracle case, 30 000 mm/s [m/s].
     const V_ORACLE: f64 = 30.0;
 
+    /// CONTACT's scheme (the oracle's numbers are its 40 × 40 grid's).
     fn settings(n: usize, bound: TractionBound, flexibility: Flexibility) -> FastsimSettings {
         FastsimSettings {
             nx: n,
             ny: n,
             bound,
             flexibility,
+            scheme: MarchScheme::Contact,
         }
     }
 
@@ -1371,6 +1462,7 @@ mod tests {
                         ny,
                         bound,
                         flexibility,
+                        ..FastsimSettings::default()
                     })
                     .unwrap();
                     for ratio in [0.01_f64, 0.1, 1.0, 10.0, 100.0] {

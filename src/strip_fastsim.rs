@@ -35,8 +35,9 @@
 //!   patch's spin, so that a flat patch (constant contact angle, ξ_kin,j = ξ − φ y_j) gives back
 //!   the planar result exactly, and only the curvature of the surface changes the strips' slip.
 //!
-//! The spin term's position within a step (x + Δx/6) is `crate::fastsim::SPIN_OFFSET_FRACTION`,
-//! as in the elliptic FASTSIM. Per strip the sums give F_x,j = Σ p_x Δx_j Δs_j, F_y,j likewise and
+//! The march follows the elliptic FASTSIM's [`MarchScheme`]: by default (`Midpoint`) the leading
+//! element steps Δx/2 from the strip's edge and the spin term sits at each step's midpoint
+//! (second order); `Contact` takes full steps with the spin term at Δx/6. Per strip the sums give F_x,j = Σ p_x Δx_j Δs_j, F_y,j likewise and
 //! Σ x p_y Δx_j Δs_j; the patch's spin moment about its reference point (planar lever arms) is
 //! M_z = Σ_j (Σ x p_y ΔA − y_j F_x,j). Frictional power: as `crate::fastsim` (slip displacement
 //! S = (L1 (p − p*)_x, L2 (p − p*)_y), p* the adhesion trial, power V Σ |p| |S| Δs_j ≥ 0).
@@ -57,7 +58,7 @@
 //! sized in [`StripFastsim::new`].
 
 use crate::error::InputError;
-use crate::fastsim::{Creepage, SPIN_OFFSET_FRACTION};
+use crate::fastsim::{Creepage, MarchScheme};
 use crate::strips::MAX_STRIPS;
 
 /// Largest element count per strip (the FMU's `nx` range).
@@ -136,6 +137,8 @@ pub struct StripElementTraction {
 #[derive(Debug, Clone)]
 pub struct StripFastsim {
     nx: usize,
+    /// Integration of the rigid slip along a strip.
+    scheme: MarchScheme,
     /// Per-strip force of the last solve, in the strip's own axes [N].
     strip_fx: Vec<f64>,
     strip_fy: Vec<f64>,
@@ -152,14 +155,34 @@ pub struct StripFastsim {
     shape: Vec<f64>,
 }
 
+/// The bound's shape √(1 − u_i²) at the element centres of a strip of `nx` elements. With the
+/// second-order march it is scaled so that its midpoint sum equals the semi-ellipse's integral
+/// π/2 (the strip's load): full sliding then gives exactly μ × the strip's normal force, where
+/// the plain midpoint sum is +0.35 % high at 20 elements (+0.12 % at 40).
+fn bound_shape(nx: usize, scheme: MarchScheme) -> Vec<f64> {
+    let mut shape: Vec<f64> = (0..nx)
+        .map(|i| {
+            let u = element_centre(i, nx);
+            (1.0 - u * u).max(0.0).sqrt()
+        })
+        .collect();
+    if scheme == MarchScheme::Midpoint {
+        let sum = shape.iter().sum::<f64>() * 2.0 / nx as f64;
+        let scale = std::f64::consts::FRAC_PI_2 / sum;
+        shape.iter_mut().for_each(|v| *v *= scale);
+    }
+    shape
+}
+
 impl StripFastsim {
     /// Buffers for up to [`MAX_STRIPS`] strips of `nx` ∈ [1, [`MAX_ELEMENTS`]] elements.
-    pub fn new(nx: usize) -> Result<Self, InputError> {
+    pub fn new(nx: usize, scheme: MarchScheme) -> Result<Self, InputError> {
         if !(1..=MAX_ELEMENTS).contains(&nx) {
             return Err(InputError::new("nx", nx as f64, "[1, 1000]"));
         }
         Ok(Self {
             nx,
+            scheme,
             strip_fx: vec![0.0; MAX_STRIPS],
             strip_fy: vec![0.0; MAX_STRIPS],
             px: vec![0.0; MAX_STRIPS * nx],
@@ -168,12 +191,7 @@ impl StripFastsim {
             geometry: vec![(0.0, 0.0, 0.0); MAX_STRIPS],
             n_strips: 0,
             centre: (0..nx).map(|i| element_centre(i, nx)).collect(),
-            shape: (0..nx)
-                .map(|i| {
-                    let u = element_centre(i, nx);
-                    (1.0 - u * u).max(0.0).sqrt()
-                })
-                .collect(),
+            shape: bound_shape(nx, scheme),
         })
     }
 
@@ -185,6 +203,9 @@ impl StripFastsim {
         // Moved out for the closure (run borrows the buffers); put back below. No allocation.
         let centre = std::mem::take(&mut self.centre);
         let shape = std::mem::take(&mut self.shape);
+        let spin_offset_fraction = self.scheme.spin_offset_fraction();
+        // The elements tile the strip: the leading centre lies Δx/2 behind its edge.
+        let lead = self.scheme.lead_fraction(0.5);
         let result = self.run(strips, speed, |strip, px_row, py_row, slip_row| {
             let [l1, l2, l3] = strip.flexibility;
             let usable = |v: f64| v.is_finite() && v > 0.0;
@@ -202,7 +223,7 @@ impl StripFastsim {
             let step_x = (k.xi / l1 - strip.reference_spin * strip.lever / l3) * dx;
             let step_y_const = k.eta / l2 * dx;
             let step_y_per_x = k.phi / l3 * dx;
-            let spin_offset = SPIN_OFFSET_FRACTION * dx;
+            let spin_offset = spin_offset_fraction * dx;
             let bound_scale = mu * strip.pmax;
             let (mut px, mut py) = (0.0_f64, 0.0_f64);
             let mut t = StripTotals {
@@ -211,11 +232,14 @@ impl StripFastsim {
             };
             let (mut sum_px, mut sum_py, mut sum_x_py, mut sum_power) = (0.0, 0.0, 0.0, 0.0);
             let mut max_sq: f64 = 0.0;
+            let mut fraction = lead;
             for i in (0..nx).rev() {
                 let x = strip.x_c + centre[i] * strip.half_length;
                 let bound = bound_scale * shape[i];
-                let trial_x = px - step_x;
-                let trial_y = py - (step_y_const + step_y_per_x * (x + spin_offset));
+                let f = fraction;
+                fraction = 1.0;
+                let trial_x = px - f * step_x;
+                let trial_y = py - f * (step_y_const + step_y_per_x * (x + f * spin_offset));
                 let trial_sq = trial_x * trial_x + trial_y * trial_y;
                 let slipping = trial_sq > bound * bound;
                 if slipping {
@@ -448,7 +472,7 @@ mod tests {
     }
 
     fn solve(ny: usize, nx: usize, creepage: Creepage) -> StripFastsimResult {
-        let mut s = StripFastsim::new(nx).unwrap();
+        let mut s = StripFastsim::new(nx, MarchScheme::Contact).unwrap();
         s.solve(&hertz_strips(ny, creepage), MU, 1.0)
     }
 
@@ -595,13 +619,13 @@ mod tests {
         strips[0].flexibility = [f64::NAN, 1.0, 1.0];
         strips[1].half_length = 0.0;
         strips[2].pmax = -1.0;
-        let mut s = StripFastsim::new(20).unwrap();
+        let mut s = StripFastsim::new(20, MarchScheme::Midpoint).unwrap();
         let r = s.solve(&strips, MU, 1.0);
         for j in 0..3 {
             assert_eq!(s.strip_force(j), (0.0, 0.0));
         }
         assert!(r.fx.is_finite() && r.fx < 0.0);
-        assert!(StripFastsim::new(0).is_err());
-        assert!(StripFastsim::new(MAX_ELEMENTS + 1).is_err());
+        assert!(StripFastsim::new(0, MarchScheme::Midpoint).is_err());
+        assert!(StripFastsim::new(MAX_ELEMENTS + 1, MarchScheme::Midpoint).is_err());
     }
 }

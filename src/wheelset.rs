@@ -92,7 +92,7 @@ impl WheelsetSettings {
         Self {
             setup,
             material,
-            fastsim: FastsimSettings::default(),
+            fastsim: FastsimSettings::online(),
             scan_step: crate::contact_search::DEFAULT_SCAN_STEP,
             b_min: crate::contact_search::DEFAULT_B_MIN,
             normal_model: NormalModel::Hertz,
@@ -321,7 +321,7 @@ impl Wheelset {
                     Vec::new()
                 } else {
                     (0..MAX_PATCHES)
-                        .map(|_| StripFastsim::new(settings.fastsim.nx))
+                        .map(|_| StripFastsim::new(settings.fastsim.nx, settings.fastsim.scheme))
                         .collect::<Result<_, _>>()?
                 },
                 tangential_strips: vec![TangentialStrip::default(); MAX_STRIPS],

@@ -200,6 +200,7 @@ fn fastsim_solve_does_not_allocate() {
                     ny: 41,
                     bound,
                     flexibility,
+                    ..FastsimSettings::online()
                 })
                 .unwrap(),
             );

@@ -293,9 +293,11 @@ fn mirrored_creepages_and_wheels_mirror_the_forces() {
 
 #[test]
 fn full_sliding_reaches_mu_n() {
-    // Far into saturation every element slips: |F| = μ Σ p ΔA, the elements' midpoint sum of
-    // the strips' semi-elliptic pressure (+0.12 % at 40 elements per strip, measured); non-planar,
-    // the strips' forces also turn by their angle to the patch (cos of ≲ 2°: −0.06 %). 2e−3.
+    // Far into saturation every element slips: |F| = μ Σ p ΔA. The strip FASTSIM's bound is
+    // scaled to the strips' loads (exact); FaStrip sums the strips' semi-elliptic pressure at the
+    // element midpoints (+0.34 % at the default 20 elements per strip, +0.12 % at 40, measured);
+    // non-planar, the strips' forces also turn by their angle to the patch (cos of ≲ 2°:
+    // −0.06 %). Tolerance 2e−3, FaStrip 5e−3.
     for (t, planar) in [
         (TangentialModel::ModelDefault, true),
         (TangentialModel::ModelDefault, false),
@@ -311,8 +313,13 @@ fn full_sliding_reaches_mu_n() {
             },
         ));
         let ratio = p.fx.hypot(p.fy) / (MU * p.fn_);
+        let tol = if t == TangentialModel::Fastrip {
+            5e-3
+        } else {
+            2e-3
+        };
         assert!(
-            (ratio - 1.0).abs() < 2e-3,
+            (ratio - 1.0).abs() < tol,
             "planar={planar}: |F|/μN = {ratio}"
         );
         assert_eq!(p.adhesion_fraction, 0.0);

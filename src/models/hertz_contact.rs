@@ -47,6 +47,7 @@ impl Model for HertzContact {
                 values.integer(var::flexibility),
                 values.integer(var::nx),
                 values.integer(var::ny),
+                values.integer(var::fastsimScheme),
             )?,
         )?);
         Ok(())

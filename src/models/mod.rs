@@ -2,7 +2,7 @@
 //! (`modelDescription/<Model>.json` → `build.rs`) and the mapping from variables to the physics
 //! core. One shared library serves all of them; `fmi2Instantiate` selects the model by GUID.
 
-use crate::fastsim::{FastsimSettings, Flexibility, TractionBound};
+use crate::fastsim::{FastsimSettings, Flexibility, MarchScheme, TractionBound};
 use crate::fmi::model::{ModelError, ModelInfo};
 use crate::fmi::variables::{RealVar, Values};
 
@@ -17,14 +17,25 @@ pub fn by_identifier(id: &str) -> Option<&'static ModelInfo> {
     MODELS.iter().copied().find(|m| m.model_identifier == id)
 }
 
-/// FASTSIM settings from the integer parameters `tractionBound`, `flexibility`, `nx`, `ny`
-/// (ranges already checked against the variable table; anything else is an error).
+/// FASTSIM settings from the integer parameters `tractionBound`, `flexibility`, `nx`, `ny`,
+/// `fastsimScheme` (ranges already checked against the variable table; anything else is an
+/// error).
 pub(crate) fn fastsim_settings(
     traction_bound: i32,
     flexibility: i32,
     nx: i32,
     ny: i32,
+    scheme: i32,
 ) -> Result<FastsimSettings, ModelError> {
+    let scheme = match scheme {
+        1 => MarchScheme::Midpoint,
+        2 => MarchScheme::Contact,
+        k => {
+            return Err(ModelError::Error(format!(
+                "fastsimScheme = {k} is not 1 or 2"
+            )))
+        }
+    };
     let bound = match traction_bound {
         1 => TractionBound::Elliptic,
         2 => TractionBound::Parabolic,
@@ -55,6 +66,7 @@ pub(crate) fn fastsim_settings(
         ny: count("ny", ny)?,
         bound,
         flexibility,
+        scheme,
     })
 }
 

@@ -236,6 +236,7 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
             values.integer(var::flexibility),
             values.integer(var::nx),
             values.integer(var::ny),
+            values.integer(var::fastsimScheme),
         )?,
         scan_step: values.real(var::scanStep),
         b_min: values.real(var::bMin),
