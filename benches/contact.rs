@@ -18,6 +18,10 @@ use railcontact::wheelset::{
 const Q: f64 = 78_500.0;
 
 fn wheelset(model: NormalModel, tangential: TangentialModel) -> Wheelset {
+    wheelset_with(model, |s| s.tangential = tangential)
+}
+
+fn wheelset_with(model: NormalModel, adjust: impl FnOnce(&mut WheelsetSettings)) -> Wheelset {
     let wheel = Profile::load("S1002", ProfileKind::Wheel, 0.0).unwrap();
     let rail = Profile::load("UIC60", ProfileKind::Rail, 0.0).unwrap();
     let material = Material {
@@ -27,7 +31,7 @@ fn wheelset(model: NormalModel, tangential: TangentialModel) -> Wheelset {
     };
     let mut settings = WheelsetSettings::new(TrackSetup::default(), material);
     settings.normal_model = model;
-    settings.tangential = tangential;
+    adjust(&mut settings);
     Wheelset::new(&wheel, &rail, settings).unwrap()
 }
 
@@ -101,5 +105,92 @@ fn bench_wheelset(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_point, bench_wheelset);
+/// Cost against the discretisation: strips per patch (ANALYN + strip FASTSIM) and the FASTSIM
+/// grid (Hertz), central case.
+fn bench_scaling(c: &mut Criterion) {
+    let mut group = c.benchmark_group("scaling");
+    for strips in [10usize, 20, 40, 80] {
+        let mut ws = wheelset_with(NormalModel::Analyn, |s| s.strips = strips);
+        let mut out = WheelsetResult::default();
+        let inp = input(0.0);
+        ws.solve(&inp, &mut out).unwrap();
+        group.bench_function(format!("analyn_strips_{strips}"), |b| {
+            b.iter(|| ws.solve(black_box(&inp), &mut out).unwrap())
+        });
+    }
+    for n in [10usize, 20, 40, 80] {
+        let mut ws = wheelset_with(NormalModel::Hertz, |s| {
+            s.fastsim.nx = n;
+            s.fastsim.ny = n;
+        });
+        let mut out = WheelsetResult::default();
+        let inp = input(0.0);
+        ws.solve(&inp, &mut out).unwrap();
+        group.bench_function(format!("hertz_grid_{n}"), |b| {
+            b.iter(|| ws.solve(black_box(&inp), &mut out).unwrap())
+        });
+    }
+    group.finish();
+}
+
+/// Instances in threads: each thread owns one wheelset (ANALYN) and solves a moving pose; the
+/// time is per solve and thread, so flat figures mean linear scaling.
+fn bench_threads(c: &mut Criterion) {
+    let mut group = c.benchmark_group("threads");
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    for threads in [1usize, 2, 4].into_iter().filter(|&t| t <= 2 * cores) {
+        group.bench_function(format!("analyn_{threads}_threads"), |b| {
+            b.iter_custom(|iters| {
+                let start = std::time::Instant::now();
+                std::thread::scope(|scope| {
+                    for _ in 0..threads {
+                        scope.spawn(|| {
+                            let mut ws =
+                                wheelset(NormalModel::Analyn, TangentialModel::ModelDefault);
+                            let mut out = WheelsetResult::default();
+                            for k in 0..iters {
+                                let y = 3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin();
+                                ws.solve(black_box(&input(y)), &mut out).unwrap();
+                            }
+                        });
+                    }
+                });
+                start.elapsed()
+            })
+        });
+    }
+    group.finish();
+}
+
+/// A moving wheelset: y = 3 mm sin(2πt) at 1 ms steps, so the warm start meets a new pose at
+/// every solve (the steady benchmarks above repeat one pose).
+fn bench_moving(c: &mut Criterion) {
+    let mut group = c.benchmark_group("moving");
+    for model in [
+        NormalModel::Hertz,
+        NormalModel::StripesAB,
+        NormalModel::Analyn,
+    ] {
+        let mut ws = wheelset(model, TangentialModel::ModelDefault);
+        let mut out = WheelsetResult::default();
+        let mut k = 0u64;
+        group.bench_function(model.name(), |b| {
+            b.iter(|| {
+                k += 1;
+                let y = 3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin();
+                ws.solve(black_box(&input(y)), &mut out).unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_point,
+    bench_wheelset,
+    bench_moving,
+    bench_scaling,
+    bench_threads
+);
 criterion_main!(benches);

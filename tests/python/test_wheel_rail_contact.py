@@ -410,11 +410,13 @@ def test_two_instances_with_different_y_are_independent(wrc_model_description, w
     def make(name: str) -> Slave:
         return Slave(wrc_model_description, wrc_unzipdir, name).initialize(inputs={"y": configs[name]})
 
+    # Each sequence ends with its last input repeated: the re-run below after the other
+    # instance's error (steps are warm-started from the previous one, so the history counts).
     alone = {}
     for name in configs:
         slave = make(name)
         try:
-            alone[name] = slave.run(sequences[name])
+            alone[name] = slave.run(sequences[name] + [sequences[name][-1]])
         finally:
             slave.free()
     assert not np.array_equal(alone["wrc_a"], alone["wrc_b"])
@@ -426,7 +428,7 @@ def test_two_instances_with_different_y_are_independent(wrc_model_description, w
             for name, slave in slaves.items():
                 rows[name].append(slave.run([sequences[name][i]])[0])
         for name in configs:
-            assert np.array_equal(bits(np.array(rows[name])), bits(alone[name])), name
+            assert np.array_equal(bits(np.array(rows[name])), bits(alone[name][:5])), name
         # An error in one instance is reported under its name and leaves the other alone.
         with pytest.raises(FMICallException):
             slaves["wrc_b"].set(y=math.nan)
