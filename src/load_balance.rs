@@ -90,7 +90,7 @@ pub fn balance<E>(
             approach *= ratio.clamp(1.0 + PREDICTOR_MARGIN, 2.0);
         }
     }
-    if !(f_hi > 0.0) {
+    if f_hi.is_nan() || f_hi <= 0.0 {
         // No point above the load (the force stays below it up to MAX_APPROACH): the deepest
         // point tried is the answer the caller gets, as before.
         return Ok(Balanced {

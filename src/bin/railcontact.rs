@@ -15,6 +15,8 @@
 
 #[path = "railcontact/json.rs"]
 mod json;
+#[path = "railcontact/report.rs"]
+mod report;
 
 use railcontact::fmi::model::{InstanceContext, Model, ModelError};
 use railcontact::fmi::variables::{Causality, Values, VarInfo, VarType};
@@ -31,6 +33,7 @@ railcontact - the WheelRailContact FMU's wheel-rail contact model on the command
 Usage:
   railcontact solve [CASE.json] [--grid NX] [--traction]
   railcontact sweep [CASE.json] [--from Y0] [--to Y1] [--step DY]
+  railcontact report [CASE.json] [--out DIR] [--reference DIR] [--quick]
   railcontact help | --help | -h
 
 CASE.json is a JSON object whose keys are parameters and inputs of the WheelRailContact FMU
@@ -58,6 +61,14 @@ sweep   Evaluates the model over the lateral shift y from Y0 to Y1 in steps of D
         wheel: number of patches, then per patch yRail [mm], contact angle [rad], normal force
         Fn [kN], rolling radius [mm], and the wheel's total lateral force Fy [kN]. Shifts where
         the wheel leaves the profiles get a note instead of numbers.
+report  Reproduces the seed study's validation: writes SVG and PNG figures (patch outlines,
+        pressure per strip, pure-spin traction planar and non-planar, STRIPES over lateral
+        shifts, creep curves), report.md and errors.csv into --out DIR (default report/).
+        Without CASE.json: the seed's central case (benchmark profiles from the reference's
+        ../profiles or ../shared/profiles, else the built-in S1002/UIC60 at 1:40; 78.5 kN,
+        E = 210 GPa, nu = 0.28, mu = 0.3, centred). --reference DIR: CONTACT's reference
+        directory (default ../shared/reference if it exists; without it no error table).
+        --quick draws the creep curves at the reference creepages only. Progress on stderr.
 
 Exit codes: 0 success; 1 bad arguments, case file, profile file or value; 2 (solve) the pose
 has no contact inside the profiles.
@@ -171,8 +182,10 @@ fn run() -> Result<i32, Failure> {
             emit(&table)?;
             Ok(if errors { 1 } else { 0 })
         }
+        "report" => report::run(rest),
         other => Err(Failure::Error(format!(
-            "unknown command '{other}' (commands: solve, sweep, help; see railcontact --help)"
+            "unknown command '{other}' (commands: solve, sweep, report, help; see railcontact \
+             --help)"
         ))),
     }
 }

@@ -1,0 +1,341 @@
+//! `railcontact report` run as a process: regenerates the validation report into a temporary
+//! directory with the shared CONTACT reference (`../shared/reference`, or `$RAILCONTACT_SHARED`;
+//! missing data fail the test, never skip it) and checks that every figure exists as a valid SVG
+//! and PNG, that report.md embeds them, and that the error table's numbers are the library's own:
+//! the central case's area and pmax of ANALYN and STRIPES-A&B and ANALYN's pure-spin forces,
+//! computed here through the library API on the benchmark wheelset (set-up as
+//! `tests/central.rs` and `tests/tangential.rs`), to the precision the table prints. A second
+//! run without reference data checks that the figures still come and the table is left out.
+
+mod common;
+
+use common::{benchmark_wheelset_with, read_csv, shared_dir, shared_file};
+use railcontact::fastsim::Creepage;
+use railcontact::patch_tangential::TangentialModel;
+use railcontact::point_contact::Material;
+use railcontact::strips::NormalModel;
+use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The figures the report writes, each as .svg and .png.
+const FIGURES: [&str; 6] = [
+    "patch_outlines",
+    "pressure_per_strip",
+    "pure_spin_planar",
+    "pure_spin_nonplanar",
+    "lateral_shifts",
+    "creep_curves",
+];
+
+const Q: f64 = 78_500.0;
+const VX: f64 = 2.0;
+
+/// A fresh, empty directory under the system's temporary directory.
+fn temp_dir(name: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("railcontact-report-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temporary directory");
+    dir
+}
+
+fn report(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_railcontact"))
+        .arg("report")
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("railcontact runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Width and height of a PNG file, after checking its signature, its IHDR chunk and its IEND
+/// trailer.
+fn png_size(path: &Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert!(
+        bytes.len() > 100,
+        "{}: only {} bytes",
+        path.display(),
+        bytes.len()
+    );
+    assert_eq!(
+        &bytes[..8],
+        b"\x89PNG\r\n\x1a\n",
+        "{}: not a PNG signature",
+        path.display()
+    );
+    assert_eq!(
+        &bytes[8..12],
+        &[0, 0, 0, 13],
+        "{}: IHDR length",
+        path.display()
+    );
+    assert_eq!(&bytes[12..16], b"IHDR", "{}: first chunk", path.display());
+    let be = |k: usize| u32::from_be_bytes([bytes[k], bytes[k + 1], bytes[k + 2], bytes[k + 3]]);
+    assert_eq!(
+        &bytes[bytes.len() - 8..bytes.len() - 4],
+        b"IEND",
+        "{}: no IEND trailer",
+        path.display()
+    );
+    (be(16), be(20))
+}
+
+/// Checks that an SVG file is non-empty XML-ish text with labels.
+fn check_svg(path: &Path) {
+    let s = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let t = s.trim_start();
+    assert!(
+        t.starts_with("<svg") || t.starts_with("<?xml"),
+        "{}: does not start as SVG",
+        path.display()
+    );
+    assert!(
+        s.contains("</svg>"),
+        "{}: no closing </svg>",
+        path.display()
+    );
+    assert!(
+        s.contains("<text"),
+        "{}: no text (axis labels)",
+        path.display()
+    );
+}
+
+fn check_figures(out: &Path) {
+    for name in FIGURES {
+        check_svg(&out.join(format!("{name}.svg")));
+        let (w, h) = png_size(&out.join(format!("{name}.png")));
+        assert!(w > 0 && h > 0, "{name}.png: {w} × {h}");
+    }
+}
+
+/// `errors.csv` as (case, normal model, tangential, planar, quantity) → (model, reference,
+/// error) texts.
+type Table = HashMap<(String, String, String, String, String), (String, String, String)>;
+
+fn read_table(path: &Path) -> Table {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    assert_eq!(
+        header,
+        [
+            "case",
+            "normal_model",
+            "tangential_model",
+            "planar_patch",
+            "quantity",
+            "unit",
+            "model",
+            "reference",
+            "error",
+            "error_unit"
+        ]
+    );
+    lines
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let f: Vec<String> = l.split(',').map(str::to_string).collect();
+            assert_eq!(f.len(), header.len(), "row {l}");
+            (
+                (
+                    f[0].clone(),
+                    f[1].clone(),
+                    f[2].clone(),
+                    f[3].clone(),
+                    f[4].clone(),
+                ),
+                (f[6].clone(), f[7].clone(), f[8].clone()),
+            )
+        })
+        .collect()
+}
+
+/// Asserts that `printed` is `value` to the printed number of decimals.
+fn assert_printed(printed: &str, value: f64, what: &str) {
+    let decimals = printed.split_once('.').map_or(0, |(_, d)| d.len());
+    let x: f64 = printed
+        .parse()
+        .unwrap_or_else(|_| panic!("{what}: '{printed}' is not a number"));
+    let tolerance = 0.5 * 10f64.powi(-(decimals as i32)) * (1.0 + 1e-9) + 1e-12;
+    assert!(
+        (x - value).abs() <= tolerance,
+        "{what}: table {printed}, library {value}"
+    );
+}
+
+fn material() -> Material {
+    Material {
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.28,
+        friction: 0.3,
+    }
+}
+
+/// The benchmark wheelset solved as the report's seed case (as `tests/central.rs` and
+/// `tests/tangential.rs` solve it).
+fn solve(
+    model: NormalModel,
+    tangential: TangentialModel,
+    planar: bool,
+    creepages: Creepages,
+) -> WheelsetResult {
+    let mut ws = benchmark_wheelset_with(material(), |s| {
+        s.normal_model = model;
+        s.tangential = tangential;
+        s.planar_patch = planar;
+    });
+    let input = WheelsetInput {
+        y: 0.0,
+        yaw: 0.0,
+        roll: 0.0,
+        vertical: Vertical::Loads { left: Q, right: Q },
+        creepages,
+    };
+    let mut out = WheelsetResult::default();
+    ws.solve(&input, &mut out).expect("central case solves");
+    out
+}
+
+const ROLLING: Creepages = Creepages::Kinematic {
+    vx: VX,
+    vy: 0.0,
+    yaw_rate: 0.0,
+    omega: VX / 0.46,
+};
+
+#[test]
+fn report_reproduces_the_figures_and_the_error_table() {
+    // Fails (never skips) without the shared data.
+    shared_file("reference/central/normal_dy0_summary.csv");
+    shared_file("profiles/MBench_S1002_v3.prw");
+    let reference = shared_dir().join("reference");
+    let out = temp_dir("with-reference");
+    let o = report(
+        &[
+            "--out",
+            out.to_str().unwrap(),
+            "--reference",
+            reference.to_str().unwrap(),
+            "--quick",
+        ],
+        Path::new(env!("CARGO_MANIFEST_DIR")),
+    );
+    let stderr = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "stderr: {stderr}");
+    // One progress line per figure.
+    for k in 1..=FIGURES.len() {
+        assert!(
+            stderr.contains(&format!("[{k}/{}]", FIGURES.len())),
+            "no progress line {k}: {stderr}"
+        );
+    }
+    check_figures(&out);
+    let md = std::fs::read_to_string(out.join("report.md")).expect("report.md");
+    for name in FIGURES {
+        assert!(
+            md.contains(&format!("({name}.png)")),
+            "report.md lacks {name}.png"
+        );
+    }
+    assert!(md.contains("Errors against the exact theory") && md.contains("| 6 ANALYN |"));
+    assert!(md.contains("MBench_S1002_v3.prw"), "the seed's profiles");
+
+    let table = read_table(&out.join("errors.csv"));
+    let key = |case: &str, model: &str, t: &str, planar: &str, q: &str| {
+        let k = (
+            case.to_string(),
+            model.to_string(),
+            t.to_string(),
+            planar.to_string(),
+            q.to_string(),
+        );
+        table
+            .get(&k)
+            .unwrap_or_else(|| panic!("errors.csv has no row {k:?}"))
+            .clone()
+    };
+    let summary = &read_csv("reference/central/normal_dy0_summary.csv")[0];
+    for (model, label) in [
+        (NormalModel::Analyn, "6 ANALYN"),
+        (NormalModel::StripesAB, "5 STRIPES-A&B"),
+    ] {
+        let right = solve(model, TangentialModel::ModelDefault, false, ROLLING).right;
+        let patches = &right.patches[..right.n_patches];
+        let area_mm2 = patches.iter().map(|p| p.area).sum::<f64>() * 1e6;
+        let pmax_mpa = patches.iter().map(|p| p.pmax).fold(0.0, f64::max) * 1e-6;
+        let (value, reference, error) = key("central", label, "-", "-", "area");
+        assert_printed(&value, area_mm2, &format!("{label} area"));
+        assert_printed(&reference, summary["area_mm2"], "reference area");
+        assert_printed(
+            &error,
+            100.0 * (area_mm2 / summary["area_mm2"] - 1.0),
+            &format!("{label} area error"),
+        );
+        let (value, reference, error) = key("central", label, "-", "-", "pmax");
+        assert_printed(&value, pmax_mpa, &format!("{label} pmax"));
+        assert_printed(&reference, summary["pmax_MPa"], "reference pmax");
+        assert_printed(
+            &error,
+            100.0 * (pmax_mpa / summary["pmax_MPa"] - 1.0),
+            &format!("{label} pmax error"),
+        );
+    }
+    // ANALYN's pure spin 0.052 rad/m, planar, tangentialModel 1 (the case's).
+    let spin = Creepages::Prescribed {
+        creepage: Creepage {
+            xi: 0.0,
+            eta: 0.0,
+            phi: 0.052,
+        },
+        vx: VX,
+    };
+    let p = solve(
+        NormalModel::Analyn,
+        TangentialModel::ModelDefault,
+        true,
+        spin,
+    )
+    .right
+    .patches[0];
+    for (q, value) in [("Fx", p.fx), ("Fy", p.fy), ("Mz", p.mz)] {
+        let (printed, _, _) = key("pure_spin", "6 ANALYN", "1", "true", q);
+        assert_printed(&printed, value, &format!("ANALYN pure spin {q}"));
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn report_without_reference_draws_the_models_alone() {
+    // Built-in profiles: a working directory without ../shared, no --reference.
+    let cwd = temp_dir("cwd");
+    let work = cwd.join("work");
+    std::fs::create_dir_all(&work).unwrap();
+    let o = report(&["--out", "figures", "--quick"], &work);
+    let stderr = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "stderr: {stderr}");
+    let out = work.join("figures");
+    check_figures(&out);
+    assert!(
+        !out.join("errors.csv").exists(),
+        "no error table without reference"
+    );
+    let md = std::fs::read_to_string(out.join("report.md")).expect("report.md");
+    assert!(md.contains("error table is omitted"), "{md}");
+    assert!(
+        md.contains("`S1002` on rail `UIC60`"),
+        "built-in profiles: {md}"
+    );
+    // A bad reference directory is an error naming it.
+    let o = report(&["--reference", "no/such/dir"], &work);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(text(&o.stderr).contains("no/such/dir"));
+    let _ = std::fs::remove_dir_all(&cwd);
+}
