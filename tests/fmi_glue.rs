@@ -169,7 +169,7 @@ fn rejected_value_names_variable_value_and_range_and_keeps_the_old_value() {
     for want in [
         "N = -1 is outside the allowed range [0, 100000000] [N]",
         "A = 0 is outside the allowed range [0.001, 100000] [1/m]",
-        "xi = NaN is outside the allowed range finite",
+        "xi = NaN is outside the allowed range [-10, 10]",
         "mu = inf is outside the allowed range (0, 10]",
         "nx = 0 is outside the allowed range integer in [1, 1000]",
     ] {

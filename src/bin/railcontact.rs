@@ -13,8 +13,7 @@
 //!
 //! Exit codes: 0 success, 1 usage / case / profile / value error, 2 no contact inside the profiles.
 
-#[path = "railcontact/json.rs"]
-mod json;
+use railcontact::case_json as json;
 #[path = "railcontact/report.rs"]
 mod report;
 

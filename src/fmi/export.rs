@@ -1,8 +1,10 @@
 //! The 34 exported `fmi2*` functions of FMI 2.0 Co-Simulation (25 common + 9 CS).
 //!
-//! Each body: null-checks its pointers, checks the state machine, runs inside `catch_unwind`
-//! (a panic becomes `fmi2Error` with a log line, never an abort of the host), and delegates to
-//! [`Instance`]. Every signature is pinned at compile time against fmi-sys's `fmi2XxxTYPE`.
+//! Each body: null-checks its pointers, refuses a component that is not a live instance (so a
+//! second `fmi2FreeInstance` is ignored and a call after it returns `fmi2Error`), checks the
+//! state machine, runs inside `catch_unwind` (a panic becomes `fmi2Error` with a log line, never
+//! an abort of the host), and delegates to [`Instance`]. Every signature is pinned at compile
+//! time against fmi-sys's `fmi2XxxTYPE`.
 //! Functions this FMU does not support log the reason and return `fmi2Error`.
 
 #![allow(non_snake_case)] // parameter names follow the FMI 2.0 standard headers
@@ -14,6 +16,38 @@ use super::variables::VarType;
 use fmi_sys::fmi2::*;
 use std::ffi::{c_char, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+/// Addresses of the instances `fmi2Instantiate` returned that `fmi2FreeInstance` has not freed.
+/// A call with any other pointer — freed (a second `fmi2FreeInstance`, a call after it) or never
+/// ours — returns `fmi2Error` (or nothing, for `fmi2FreeInstance`) without touching memory, as
+/// long as the allocator has not handed the address to a newer instance. It holds no model data,
+/// so instances stay independent; the lookup allocates nothing.
+static LIVE: Mutex<Vec<usize>> = Mutex::new(Vec::new());
+
+fn live() -> MutexGuard<'static, Vec<usize>> {
+    LIVE.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+fn is_live(c: fmi2Component) -> bool {
+    live().contains(&(c as usize))
+}
+
+/// Forgets `c`; false if it was not live.
+fn forget(c: fmi2Component) -> bool {
+    let mut live = live();
+    match live.iter().position(|&p| p == c as usize) {
+        Some(i) => {
+            live.swap_remove(i);
+            if live.is_empty() {
+                // Nothing left allocated when the host unloads the library.
+                live.shrink_to_fit();
+            }
+            true
+        }
+        None => false,
+    }
+}
 
 /// Reads a possibly-NULL C string.
 unsafe fn c_str<'a>(s: fmi2String) -> Option<&'a str> {
@@ -61,7 +95,7 @@ fn with_instance(
     allowed: u8,
     body: impl FnOnce(&mut Instance) -> fmi2Status,
 ) -> fmi2Status {
-    if c.is_null() {
+    if c.is_null() || !is_live(c) {
         return ERROR;
     }
     let ptr = c.cast::<Instance>();
@@ -184,7 +218,9 @@ pub unsafe extern "C" fn fmi2Instantiate(
             OK,
             &format!("instantiated {} ({})", info.model_identifier, info.guid),
         );
-        Box::into_raw(inst).cast()
+        let c: fmi2Component = Box::into_raw(inst).cast();
+        live().push(c as usize);
+        c
     }));
     result.unwrap_or(std::ptr::null_mut())
 }
@@ -194,7 +230,8 @@ const _: fmi2InstantiateTYPE = Some(fmi2Instantiate);
 /// `c` must come from `fmi2Instantiate` and not have been freed.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
-    if c.is_null() {
+    // NULL, already freed or not ours: nothing to free (a double free is ignored).
+    if c.is_null() || !forget(c) {
         return;
     }
     let _ = catch_unwind(AssertUnwindSafe(|| {

@@ -132,7 +132,20 @@ fn to_cstring(s: &str) -> CString {
     CString::new(s.replace('\0', "?")).expect("NULs replaced")
 }
 
-const STATE_MAGIC: &[u8; 8] = b"RCFMUST1";
+/// Header of a serialized FMU state (version 2: with a trailing checksum).
+const STATE_MAGIC: &[u8; 8] = b"RCFMUST2";
+/// Length of the trailing checksum of a serialized FMU state.
+const CHECKSUM_BYTES: usize = 8;
+
+/// FNV-1a (64 bit) of `bytes`: the checksum that ends a serialized FMU state. Any change of a
+/// single byte changes it (each step is a bijection of the running hash), so a flipped byte is
+/// always detected; other corruptions with probability 1 − 2⁻⁶⁴.
+fn checksum(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
 /// Tolerance for comparing communication points (fmi-notes.md §3, §10).
 const TIME_TOLERANCE: f64 = 1e-9;
 
@@ -322,7 +335,8 @@ impl Instance {
     }
 
     /// Sets values of one type. Each value is checked against the table (type, settable now,
-    /// range); a rejected value leaves the old one in place and returns `fmi2Error`.
+    /// range); if any is rejected, the call returns `fmi2Error` with a message naming it and
+    /// no value changes.
     pub fn set<T: Copy + std::fmt::Display>(
         &mut self,
         ty: VarType,
@@ -331,6 +345,7 @@ impl Instance {
         accepts: impl Fn(&VarInfo, T) -> bool,
         mut write: impl FnMut(&mut Values, usize, T),
     ) -> fmi2Status {
+        // Every value is checked before any is written: a rejected call changes nothing.
         for (&vr, &x) in vrs.iter().zip(values) {
             let v = match self.variable(vr, ty) {
                 Ok(v) => v,
@@ -351,6 +366,11 @@ impl Instance {
                     }
                 ));
             }
+        }
+        for (&vr, &x) in vrs.iter().zip(values) {
+            let Some(v) = self.info.variables.get(vr as usize) else {
+                continue; // unreachable: checked above
+            };
             write(&mut self.values, v.slot, x);
             if v.causality == Causality::Parameter {
                 self.needs_initialize = true;
@@ -401,6 +421,12 @@ impl Instance {
         if !(step.is_finite() && step > 0.0) {
             return self.error(&format!(
                 "communicationStepSize = {step} must be finite and > 0"
+            ));
+        }
+        if !(current.is_finite() && (current + step).is_finite()) {
+            return self.error(&format!(
+                "currentCommunicationPoint = {current} and communicationStepSize = {step} must \
+                 give a finite time"
             ));
         }
         let mut status = OK;
@@ -495,6 +521,8 @@ impl Instance {
         self.model.save_state(&mut model);
         out.extend_from_slice(&(model.len() as u64).to_le_bytes());
         out.extend_from_slice(&model);
+        let sum = checksum(&out);
+        out.extend_from_slice(&sum.to_le_bytes());
         out
     }
 
@@ -504,10 +532,28 @@ impl Instance {
     }
 
     fn parse_state<'a>(&self, bytes: &'a [u8]) -> Result<ParsedState<'a>, String> {
-        let mut r = ByteReader::new(bytes);
-        if r.take(STATE_MAGIC.len())? != STATE_MAGIC {
-            return Err("not a railcontact FMU state (bad magic)".into());
+        if !bytes.starts_with(STATE_MAGIC) {
+            return Err(format!(
+                "not a railcontact FMU state of this version (the first {} bytes are not {:?})",
+                STATE_MAGIC.len(),
+                String::from_utf8_lossy(STATE_MAGIC)
+            ));
         }
+        if bytes.len() < STATE_MAGIC.len() + CHECKSUM_BYTES {
+            return Err(format!("serialized state truncated: {} bytes", bytes.len()));
+        }
+        let (body, sum) = bytes.split_at(bytes.len() - CHECKSUM_BYTES);
+        let mut stored = [0u8; CHECKSUM_BYTES];
+        stored.copy_from_slice(sum);
+        if u64::from_le_bytes(stored) != checksum(body) {
+            return Err(format!(
+                "FMU state corrupt: checksum mismatch over its {} bytes (truncated, extended or \
+                 altered)",
+                bytes.len()
+            ));
+        }
+        let mut r = ByteReader::new(body);
+        r.take(STATE_MAGIC.len())?;
         let guid = r.string()?;
         if guid != self.info.guid {
             return Err(format!(

@@ -199,25 +199,43 @@ fn side_vars(right: bool) -> (IntegerVar, [RealVar; 4]) {
     }
 }
 
-/// A profile parameter: built-in name, or a path (relative paths: FMU resources first).
+/// A profile parameter: built-in name, or a path (relative paths: FMU resources first). The
+/// error names the parameter and its value, then the file, line and reason.
 fn load_profile(
     spec: &str,
     kind: ProfileKind,
     smoothing: f64,
     resources: Option<&Path>,
 ) -> Result<Profile, ModelError> {
+    let variable = match kind {
+        ProfileKind::Wheel => "wheelProfile",
+        ProfileKind::Rail => "railProfile",
+    };
     let in_resources = resources
         .map(|dir| dir.join(spec))
         .filter(|p| Path::new(spec).is_relative() && p.is_file());
-    let spec = in_resources
+    let path = in_resources
         .as_deref()
         .and_then(Path::to_str)
         .unwrap_or(spec);
-    Profile::load(spec, kind, smoothing).map_err(|e| ModelError::Error(e.to_string()))
+    Profile::load(path, kind, smoothing)
+        .map_err(|e| ModelError::Error(format!("{variable} = {spec:?}: {e}")))
 }
 
 /// The wheelset settings the parameters describe.
 pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
+    // The one constraint between parameters (each is range-checked when set): the wheels must
+    // fit between the rails.
+    let (gauge, flange_backs) = (
+        values.real(var::trackGauge),
+        values.real(var::flangeBackDistance),
+    );
+    if flange_backs >= gauge {
+        return Err(ModelError::Error(format!(
+            "flangeBackDistance = {flange_backs} is outside the allowed range < trackGauge = \
+             {gauge} [m]"
+        )));
+    }
     Ok(WheelsetSettings {
         setup: TrackSetup {
             rail_inclination: values.real(var::railInclination),
@@ -263,8 +281,13 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
     })
 }
 
+/// Wheel loads below this count as a lifted wheel (0) [N]. Far below any load that matters, it
+/// keeps the load iteration away from loads so small that its first approach underflows to zero
+/// (a load of 5e−324 N made `fmi2DoStep` loop forever: docs/reliability.md).
+pub const MIN_WHEEL_LOAD: f64 = 1e-6;
+
 /// The wheelset input the inputs describe (`verticalMode` = 2 → `vertical_by_position`,
-/// `creepageMode` = 2 → `creepage_prescribed`).
+/// `creepageMode` = 2 → `creepage_prescribed`). Loads below [`MIN_WHEEL_LOAD`] are 0.
 pub fn input(
     values: &Values,
     vertical_by_position: bool,
@@ -280,9 +303,10 @@ pub fn input(
                 z: values.real(var::z),
             }
         } else {
+            let load = |q: f64| if q < MIN_WHEEL_LOAD { 0.0 } else { q };
             Vertical::Loads {
-                left: values.real(var::Qleft),
-                right: values.real(var::Qright),
+                left: load(values.real(var::Qleft)),
+                right: load(values.real(var::Qright)),
             }
         },
         creepages: if creepage_prescribed {

@@ -249,6 +249,38 @@ impl Profile {
         Self::from_file(path, Some(kind), smoothing)
     }
 
+    /// Reads a profile from the bytes of a file in memory, exactly as [`Profile::from_file`]
+    /// reads the file `file_name` (the format is chosen by its extension; the name appears in
+    /// error messages). Used by the fuzz targets (`fuzz/`) and by hosts that hold profiles in
+    /// memory. Never panics: every input gives a profile or a [`ProfileError`].
+    pub fn from_bytes(
+        bytes: &[u8],
+        file_name: &str,
+        kind_hint: Option<ProfileKind>,
+        smoothing: f64,
+    ) -> Result<Profile, ProfileError> {
+        let path = Path::new(file_name);
+        let source = error::file_source(path);
+        if bytes.len() as u64 > parse::MAX_FILE_BYTES {
+            return Err(ProfileError::new(
+                &source,
+                Location::Whole,
+                ErrorReason::FileTooLarge {
+                    bytes: bytes.len() as u64,
+                    limit: parse::MAX_FILE_BYTES,
+                },
+            ));
+        }
+        Self::read(
+            path,
+            &source,
+            kind_hint,
+            parse::MM_PER_M,
+            smoothing,
+            |source| parse::text_from_bytes(bytes, source),
+        )
+    }
+
     fn read_file(
         path: &Path,
         kind_hint: Option<ProfileKind>,
@@ -256,6 +288,26 @@ impl Profile {
         smoothing: f64,
     ) -> Result<Profile, ProfileError> {
         let source = error::file_source(path);
+        Self::read(
+            path,
+            &source,
+            kind_hint,
+            units_per_metre,
+            smoothing,
+            |source| parse::read_text(path, source),
+        )
+    }
+
+    /// Chooses the reader by the extension of `path`, reads the text through `text` and builds
+    /// the profile.
+    fn read(
+        path: &Path,
+        source: &str,
+        kind_hint: Option<ProfileKind>,
+        units_per_metre: f64,
+        smoothing: f64,
+        text: impl FnOnce(&str) -> Result<String, ProfileError>,
+    ) -> Result<Profile, ProfileError> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -269,22 +321,22 @@ impl Profile {
         };
         if by_extension.is_none() && kind_hint.is_none() {
             return Err(ProfileError::new(
-                &source,
+                source,
                 Location::Whole,
                 ErrorReason::KindRequired,
             ));
         }
-        let text = parse::read_text(path, &source)?;
+        let text = text(source)?;
         let raw = match ext.as_str() {
-            "prr" | "prw" => parse::parse_simpack(&text, &source)?,
-            "ban" => parse::parse_ban(&text, &source)?,
-            _ => parse::parse_columns(&text, &source, units_per_metre)?,
+            "prr" | "prw" => parse::parse_simpack(&text, source)?,
+            "ban" => parse::parse_ban(&text, source)?,
+            _ => parse::parse_columns(&text, source, units_per_metre)?,
         };
         let kind = match raw.declared_kind.or(by_extension).or(kind_hint) {
             Some(k) => k,
             None => {
                 return Err(ProfileError::new(
-                    &source,
+                    source,
                     Location::Whole,
                     ErrorReason::KindRequired,
                 ))
@@ -293,7 +345,7 @@ impl Profile {
         if let Some(requested) = kind_hint {
             if requested != kind {
                 return Err(ProfileError::new(
-                    &source,
+                    source,
                     Location::Whole,
                     ErrorReason::KindMismatch {
                         requested,
@@ -302,7 +354,7 @@ impl Profile {
                 ));
             }
         }
-        Self::from_raw(path, &source, raw, kind, smoothing)
+        Self::from_raw(path, source, raw, kind, smoothing)
     }
 
     fn from_raw(
@@ -651,5 +703,30 @@ mod tests {
         assert!(e.to_string().contains("/nonexistent/rail.prr"), "{e}");
         let e = Profile::load("", ProfileKind::Rail, 0.0).unwrap_err();
         assert!(matches!(e.reason, ErrorReason::UnknownBuiltin { .. }));
+    }
+
+    /// `from_bytes` (the fuzz targets' entry) reads exactly as `from_file` does, by extension.
+    #[test]
+    fn from_bytes_reads_as_from_file() {
+        let text = "header.begin\n type = 1\nheader.end\npoint.begin\n-2 1\n-1 0.25\n0 0\n\
+                    1 0.25\n2 1\npoint.end\n";
+        let path = std::env::temp_dir().join(format!("from_bytes_{}.prw", std::process::id()));
+        std::fs::write(&path, text).unwrap();
+        let from_file = Profile::from_file(&path, None, 1e-4).unwrap();
+        let _ = std::fs::remove_file(&path);
+        let from_bytes = Profile::from_bytes(text.as_bytes(), "x.prw", None, 1e-4).unwrap();
+        assert_eq!(from_file.points(), from_bytes.points());
+        assert_eq!(from_file.eval(0.0005), from_bytes.eval(0.0005));
+        // Errors name the file name given, with the line.
+        let e = Profile::from_bytes(b"point.begin\n1 x\npoint.end\n", "bad.prr", None, 0.0)
+            .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "profile file 'bad.prr', line 2: non-numeric value \"x\" (expected a number)"
+        );
+        let e = Profile::from_bytes(b"1 2\n", "plain.csv", None, 0.0).unwrap_err();
+        assert_eq!(e.reason, ErrorReason::KindRequired);
+        let e = Profile::from_bytes(b"a\0b", "nul.csv", Some(ProfileKind::Rail), 0.0).unwrap_err();
+        assert_eq!(e.reason, ErrorReason::Binary);
     }
 }
