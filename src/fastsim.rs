@@ -348,55 +348,56 @@ const MAX_OVERDRIVE: f64 = 1e100;
 /// midpoint of the step.
 pub const SPIN_OFFSET_FRACTION: f64 = 1.0 / 6.0;
 
-/// Constants of the F3 march shared by a strip at y and its mirror strip at −y (all per step Δx).
-/// The two strips have the same elements and bound; only the x increment differs (−φy/L3 term).
+/// Constants of the F3 march along one strip of equal elements (all per step Δx); shared by a
+/// strip at y and its mirror strip at −y (same elements and bound, only the x increment differs:
+/// −φy/L3), and by the strips of non-elliptic patches (`crate::strip_fastsim`).
 #[derive(Debug, Clone, Copy)]
-struct StripMarch {
+pub(crate) struct StripMarch {
     /// Centre x of the first (trailing-most) contact element of the strip [m].
-    x_first: f64,
+    pub x_first: f64,
     /// Element length Δx [m].
-    dx: f64,
+    pub dx: f64,
     /// (η/L2)Δx: y increment of a full step without the spin term [Pa].
-    step_y_at_zero: f64,
+    pub step_y_at_zero: f64,
     /// (φ/L3)Δx: growth of the y increment with the x of the spin term [Pa/m].
-    step_y_per_x: f64,
+    pub step_y_per_x: f64,
     /// Position of the spin term within a full step, from the element centre towards the
     /// leading edge [m].
-    spin_offset: f64,
+    pub spin_offset: f64,
     /// The leading element's step as a fraction of Δx ([`MarchScheme::lead_fraction`]).
-    lead_fraction: f64,
+    pub lead_fraction: f64,
     /// μ × peak pressure; the bound of an element is this times its shape factor [Pa].
-    bound_scale: f64,
+    pub bound_scale: f64,
     /// Flexibilities converting traction changes into slip displacement, x and y [m/Pa].
-    slip_flexibility: [f64; 2],
+    pub slip_flexibility: [f64; 2],
 }
 
 /// Output slices of one strip (its contact elements only).
-struct StripOut<'s> {
-    px: &'s mut [f64],
-    py: &'s mut [f64],
-    slipping: &'s mut [bool],
+pub(crate) struct StripOut<'s> {
+    pub px: &'s mut [f64],
+    pub py: &'s mut [f64],
+    pub slipping: &'s mut [bool],
 }
 
 /// Sums over elements (tractions in Pa, not yet multiplied by the element area).
 #[derive(Debug, Clone, Copy, Default)]
-struct StripSums {
-    sum_px: f64,
-    sum_py: f64,
+pub(crate) struct StripSums {
+    pub sum_px: f64,
+    pub sum_py: f64,
     /// Σ x p_y [Pa m].
-    sum_x_py: f64,
+    pub sum_x_py: f64,
     /// Σ |p| |S| [Pa m].
-    sum_power: f64,
-    max_traction_sq: f64,
-    n_contact: usize,
-    n_adhesion: usize,
+    pub sum_power: f64,
+    pub max_traction_sq: f64,
+    pub n_contact: usize,
+    pub n_adhesion: usize,
 }
 
 impl StripMarch {
     /// F3 on `LANES` strips (1, or a strip and its mirror) from the leading element (last in the
     /// slices, largest x) to the trailing one; `step_x[lane]` = (ξ/L1 − φy/L3)Δx [Pa]. Marching
     /// two independent strips together halves the latency-bound cost of the slip branch.
-    fn run<const LANES: usize>(
+    pub(crate) fn run<const LANES: usize>(
         &self,
         step_x: [f64; LANES],
         shape: &[f64],

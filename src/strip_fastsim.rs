@@ -58,7 +58,7 @@
 //! sized in [`StripFastsim::new`].
 
 use crate::error::InputError;
-use crate::fastsim::{Creepage, MarchScheme};
+use crate::fastsim::{Creepage, MarchScheme, StripMarch, StripOut};
 use crate::strips::MAX_STRIPS;
 
 /// Largest element count per strip (the FMU's `nx` range).
@@ -149,9 +149,8 @@ pub struct StripFastsim {
     /// Strip geometry of the last solve (for [`StripFastsim::tractions`]).
     geometry: Vec<(f64, f64, f64)>,
     n_strips: usize,
-    /// Element centres u_i ∈ (−1, 1) along a strip and the bound's shape √(1 − u_i²), the same
-    /// for every strip (precomputed: no square root per element in the march).
-    centre: Vec<f64>,
+    /// The bound's shape √(1 − u_i²) at the element centres u_i ∈ (−1, 1), the same for every
+    /// strip (precomputed: no square root per element in the march).
     shape: Vec<f64>,
 }
 
@@ -190,7 +189,6 @@ impl StripFastsim {
             slipping: vec![false; MAX_STRIPS * nx],
             geometry: vec![(0.0, 0.0, 0.0); MAX_STRIPS],
             n_strips: 0,
-            centre: (0..nx).map(|i| element_centre(i, nx)).collect(),
             shape: bound_shape(nx, scheme),
         })
     }
@@ -201,7 +199,6 @@ impl StripFastsim {
     pub fn solve(&mut self, strips: &[TangentialStrip], mu: f64, speed: f64) -> StripFastsimResult {
         let nx = self.nx;
         // Moved out for the closure (run borrows the buffers); put back below. No allocation.
-        let centre = std::mem::take(&mut self.centre);
         let shape = std::mem::take(&mut self.shape);
         let spin_offset_fraction = self.scheme.spin_offset_fraction();
         // The elements tile the strip: the leading centre lies Δx/2 behind its edge.
@@ -220,61 +217,35 @@ impl StripFastsim {
             }
             let dx = 2.0 * strip.half_length / nx as f64;
             let k = strip.creepage;
-            let step_x = (k.xi / l1 - strip.reference_spin * strip.lever / l3) * dx;
-            let step_y_const = k.eta / l2 * dx;
-            let step_y_per_x = k.phi / l3 * dx;
-            let spin_offset = spin_offset_fraction * dx;
-            let bound_scale = mu * strip.pmax;
-            let (mut px, mut py) = (0.0_f64, 0.0_f64);
-            let mut t = StripTotals {
-                n_elements: nx,
-                ..StripTotals::default()
+            let march = StripMarch {
+                x_first: strip.x_c - strip.half_length + 0.5 * dx,
+                dx,
+                step_y_at_zero: k.eta / l2 * dx,
+                step_y_per_x: k.phi / l3 * dx,
+                spin_offset: spin_offset_fraction * dx,
+                lead_fraction: lead,
+                bound_scale: mu * strip.pmax,
+                slip_flexibility: [l1, l2],
             };
-            let (mut sum_px, mut sum_py, mut sum_x_py, mut sum_power) = (0.0, 0.0, 0.0, 0.0);
-            let mut max_sq: f64 = 0.0;
-            let mut fraction = lead;
-            for i in (0..nx).rev() {
-                let x = strip.x_c + centre[i] * strip.half_length;
-                let bound = bound_scale * shape[i];
-                let f = fraction;
-                fraction = 1.0;
-                let trial_x = px - f * step_x;
-                let trial_y = py - f * (step_y_const + step_y_per_x * (x + f * spin_offset));
-                let trial_sq = trial_x * trial_x + trial_y * trial_y;
-                let slipping = trial_sq > bound * bound;
-                if slipping {
-                    let f = if trial_sq > 0.0 {
-                        bound / trial_sq.sqrt()
-                    } else {
-                        0.0
-                    };
-                    px = trial_x * f;
-                    py = trial_y * f;
-                    let sx = l1 * (px - trial_x);
-                    let sy = l2 * (py - trial_y);
-                    sum_power += bound * (sx * sx + sy * sy).sqrt();
-                } else {
-                    px = trial_x;
-                    py = trial_y;
-                    t.n_adhesion += 1;
-                }
-                px_row[i] = px;
-                py_row[i] = py;
-                slip_row[i] = slipping;
-                sum_px += px;
-                sum_py += py;
-                sum_x_py += x * py;
-                max_sq = max_sq.max(px * px + py * py);
-            }
+            let step_x = (k.xi / l1 - strip.reference_spin * strip.lever / l3) * dx;
+            let mut out = [StripOut {
+                px: px_row,
+                py: py_row,
+                slipping: slip_row,
+            }];
+            let [sums] = march.run([step_x], &shape, &mut out);
             let area = dx * strip.width;
-            t.fx = sum_px * area;
-            t.fy = sum_py * area;
-            t.x_fy = sum_x_py * area;
-            t.power_per_speed = sum_power * strip.width;
-            t.max_traction = max_sq.sqrt();
+            let t = StripTotals {
+                fx: sums.sum_px * area,
+                fy: sums.sum_py * area,
+                x_fy: sums.sum_x_py * area,
+                power_per_speed: sums.sum_power * strip.width,
+                max_traction: sums.max_traction_sq.sqrt(),
+                n_elements: nx,
+                n_adhesion: sums.n_adhesion,
+            };
             Some(t)
         });
-        self.centre = centre;
         self.shape = shape;
         result
     }
