@@ -1019,15 +1019,11 @@ fn solve_side(
         let start = warm.map_or(0.0, |w| w.creep);
         creep = solve_strips(side, ctx, input, load, touch, start, out)?;
     }
-    side.warm = match (load, creep) {
-        (Some(q), Some(creep)) if q > 0.0 && approach > 0.0 => Some(WarmStart { approach, creep }),
-        // A load without a tangential problem (Hertz without patches) keeps the approach.
-        (Some(q), None) if q > 0.0 && approach > 0.0 => Some(WarmStart {
-            approach,
-            creep: 0.0,
-        }),
-        _ => None,
-    };
+    // A load without a tangential problem (no patch) keeps the approach with no creep component.
+    side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0).then(|| WarmStart {
+        approach,
+        creep: creep.unwrap_or(0.0),
+    });
     Ok(())
 }
 

@@ -416,18 +416,8 @@ impl Model for WheelRailContact {
     /// byte, then per wheel a presence byte and the approach [m] and creep component [N] as
     /// little-endian f64. Nothing before initialization.
     fn save_state(&self, out: &mut Vec<u8>) {
-        let Some(solver) = &self.solver else {
-            return;
-        };
-        out.push(WARM_STATE_VERSION);
-        for warm in solver.wheelset.warm_start() {
-            out.push(u8::from(warm.is_some()));
-            let w = warm.unwrap_or(WarmStart {
-                approach: 0.0,
-                creep: 0.0,
-            });
-            out.extend_from_slice(&w.approach.to_le_bytes());
-            out.extend_from_slice(&w.creep.to_le_bytes());
+        if let Some(solver) = &self.solver {
+            write_warm_start(solver.wheelset.warm_start(), out);
         }
     }
 
@@ -451,6 +441,20 @@ impl Model for WheelRailContact {
 const WARM_STATE_VERSION: u8 = 1;
 /// Bytes of one wheel's warm start: presence flag, approach, creep component.
 const WARM_SIDE_BYTES: usize = 1 + 2 * 8;
+
+/// Appends the warm starts in the layout of [`Model::save_state`].
+fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
+    out.push(WARM_STATE_VERSION);
+    for side in warm {
+        out.push(u8::from(side.is_some()));
+        let w = side.unwrap_or(WarmStart {
+            approach: 0.0,
+            creep: 0.0,
+        });
+        out.extend_from_slice(&w.approach.to_le_bytes());
+        out.extend_from_slice(&w.creep.to_le_bytes());
+    }
+}
 
 /// Reads what [`Model::save_state`] wrote; rejects any other length, version or flag, and
 /// non-finite or non-positive approaches.
@@ -496,16 +500,8 @@ mod tests {
     use super::*;
 
     fn bytes_of(warm: [Option<WarmStart>; 2]) -> Vec<u8> {
-        let mut out = vec![WARM_STATE_VERSION];
-        for w in warm {
-            let w2 = w.unwrap_or(WarmStart {
-                approach: 0.0,
-                creep: 0.0,
-            });
-            out.push(u8::from(w.is_some()));
-            out.extend_from_slice(&w2.approach.to_le_bytes());
-            out.extend_from_slice(&w2.creep.to_le_bytes());
-        }
+        let mut out = Vec::new();
+        write_warm_start(warm, &mut out);
         out
     }
 
