@@ -50,6 +50,11 @@ fn input(y: f64) -> WheelsetInput {
     }
 }
 
+/// Lateral shift of the moving wheelset at step `k`: 3 mm · sin 2πt at 1 ms steps [m].
+fn moving_y(k: u64) -> f64 {
+    3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin()
+}
+
 fn bench_point(c: &mut Criterion) {
     c.bench_function("hertz_from_approach", |b| {
         b.iter(|| hertz_from_approach(black_box(1.09), black_box(2.3), black_box(8e-5), 1.15e11))
@@ -149,8 +154,7 @@ fn bench_threads(c: &mut Criterion) {
                                 wheelset(NormalModel::Analyn, TangentialModel::ModelDefault);
                             let mut out = WheelsetResult::default();
                             for k in 0..iters {
-                                let y = 3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin();
-                                ws.solve(black_box(&input(y)), &mut out).unwrap();
+                                ws.solve(black_box(&input(moving_y(k))), &mut out).unwrap();
                             }
                         });
                     }
@@ -177,8 +181,7 @@ fn bench_moving(c: &mut Criterion) {
         group.bench_function(model.name(), |b| {
             b.iter(|| {
                 k += 1;
-                let y = 3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin();
-                ws.solve(black_box(&input(y)), &mut out).unwrap()
+                ws.solve(black_box(&input(moving_y(k))), &mut out).unwrap()
             })
         });
     }
