@@ -45,6 +45,21 @@ pub const DEFAULT_SCAN_STEP: f64 = 5e-4;
 /// plane is inclined by less than ~10°, i.e. the flange no longer guides the wheel.
 pub const FLANGE_TIP_MARGIN: f64 = 2e-3;
 
+/// Iteration limit of the yawed wheel's lowest-point search (Newton converges in 2–3 steps from
+/// the axle-plane guess at the yaw angles of running; bisection halves the 0.46 m bracket to
+/// 1e−9 m in 29 steps where Newton cannot be trusted).
+const WHEEL_NEWTON_STEPS: usize = 40;
+
+/// Margin on the single-maximum condition tan²ψ (z'² + r z'')max < 1 of that search.
+const UNIMODAL_MARGIN: f64 = 0.9;
+
+/// Samples of the coarse scan over the ±r0/2 bracket when the condition fails (0.46 m / 64 =
+/// 7 mm apart; the two maxima of a yawed flange lie several centimetres apart in X).
+const MULTI_START_SAMPLES: usize = 64;
+
+/// Step below which that search has converged [m]: the gap error is second order in it.
+const WHEEL_NEWTON_TOLERANCE: f64 = 1e-9;
+
 /// Default floor of the relative lateral curvature B [1/m] (CONTACT: 1e−4 1/mm).
 pub const DEFAULT_B_MIN: f64 = 0.1;
 
@@ -207,6 +222,8 @@ struct Prepared {
     cos_yaw: f64,
     sin_roll: f64,
     cos_roll: f64,
+    /// Whether the yawed wheel has one lowest point per lateral (see `WheelOnRail::wheel_at`).
+    single_lowest_point: bool,
 }
 
 /// One wheel on its rail: mounted geometry plus the scan buffer (allocated once).
@@ -219,6 +236,9 @@ pub struct WheelOnRail {
     b_min: f64,
     /// Wheel-profile coordinate of the flange tip (highest z on the flange side, y < 0) [m].
     flange_tip: f64,
+    /// max over the wheel profile's running side of z'² + r z'' [-] (r the radius there): the
+    /// yawed wheel's lowest point is unique at yaw ψ with tan²ψ × this < 1 (`wheel_at`).
+    wheel_convexity: f64,
     samples: Vec<GapSample>,
     /// Lateral coordinate of the first sample and the sample spacing of the last search [m].
     scan_lo: f64,
@@ -287,14 +307,42 @@ struct CurvePoint<T> {
     extra: T,
 }
 
+/// Normal gap given to in-plane coordinates where a surface has no point [m]: no approach
+/// reaches it (the load iteration stops at 5 cm), so such a strip is never in contact.
+pub const UNREACHED_GAP: f64 = 1.0;
+
+/// Residual |t(w) − s| below which a plane projection has converged [m] (converged ones reach
+/// ~1e−13; a failed one, where no point of the curve projects to s, stays at ≳ 1e−6).
+const PROJECTION_TOLERANCE: f64 = 1e-9;
+
+/// max of z'² + r z'' with r = `radius` + z (the radius at the point) [-] over the wheel profile
+/// from the flange tip `from` to the field side, sampled every 10 µm (the spline's z'' is
+/// linear between knots spaced ≥ 10 µm). The flange's back (z' → ∞ on its vertical face) is
+/// left out: contact there is refused as flange climb, and a yawed wheel's lowest point cannot
+/// lie on it (its lead r z' tan ψ would exceed r/2).
+fn wheel_convexity(wheel: &Profile, radius: f64, from: f64) -> f64 {
+    const STEP: f64 = 1e-5;
+    let (lo, hi) = wheel.y_range();
+    let lo = lo.max(from).min(hi);
+    let n = ((hi - lo) / STEP).ceil() as usize;
+    (0..=n)
+        .map(|i| {
+            let (z, dz, d2z) = wheel.eval(lo + (hi - lo) * i as f64 / n as f64);
+            dz * dz + (radius + z) * d2z
+        })
+        .fold(0.0, f64::max)
+}
+
 /// Solves t(w) = (w − w0) cos γ − (z(w) − z0) sin γ = s for a curve w ↦ (z, extra) by a secant
 /// iteration started on the tangent (dt/dw = 1/cos γ at the tangent point and varies slowly
-/// near a patch).
+/// near a patch). The flag is false when it does not converge: beyond a point where the curve turns steeper
+/// than the plane's normal (a rail's gauge face seen from a flange-root plane) t(w) has a
+/// maximum, and in-plane coordinates past it have no point of the curve.
 fn project_on_plane<T: Copy>(
     plane: &ContactPlane,
     s: f64,
     curve: impl Fn(f64) -> (f64, T),
-) -> CurvePoint<T> {
+) -> (CurvePoint<T>, bool) {
     let (sin_g, cos_g) = plane.gamma.sin_cos();
     let eval = |w: f64| {
         let (z, extra) = curve(w);
@@ -304,10 +352,10 @@ fn project_on_plane<T: Copy>(
     let w_start = plane.w0 + s * cos_g;
     let (mut r_prev, mut prev) = eval(w_start);
     let mut w = w_start - r_prev * cos_g;
-    let mut point = prev;
+    let (mut residual, mut point) = (r_prev, prev);
     for _ in 0..8 {
         let (r, p) = eval(w);
-        point = p;
+        (residual, point) = (r, p);
         // 1e−12 m along the plane: far below every contact dimension.
         if r.abs() < 1e-12 || r == r_prev {
             break;
@@ -316,7 +364,7 @@ fn project_on_plane<T: Copy>(
         (r_prev, prev) = (r, p);
         w = next;
     }
-    point
+    (point, residual.abs() <= PROJECTION_TOLERANCE)
 }
 
 /// Normal coordinate (n = (sin γ, cos γ)) of the wheelset-frame point (w, z) from the plane's
@@ -329,8 +377,11 @@ fn normal_coordinate(plane: &ContactPlane, w: f64, z: f64) -> f64 {
 /// Gap and points at one in-plane coordinate (see [`WheelOnRail::strip_geometry`]).
 #[derive(Debug, Clone, Copy)]
 struct PlaneGap {
-    /// Normal gap minus the origin's gap [m].
+    /// Normal gap minus the origin's gap [m]; [`UNREACHED_GAP`] where a surface has no point
+    /// at this in-plane coordinate.
     f: f64,
+    /// Whether both surfaces have a point here ([`project_on_plane`] converged for both).
+    found: bool,
     /// Longitudinal position of the wheel's lowest point [m].
     x: f64,
     /// Rail point: lateral (wheelset frame) and rail-frame coordinate [m].
@@ -360,6 +411,7 @@ impl WheelOnRail {
         }
         let rail = MountedRail::new(rail, setup)?;
         let flange_tip = flange_tip(&wheel);
+        let wheel_convexity = wheel_convexity(&wheel, setup.wheel_radius, flange_tip);
         let (r0, r1) = rail.profile().y_range();
         let capacity = ((r1 - r0) / scan_step).ceil() as usize + 3;
         Ok(Self {
@@ -369,6 +421,7 @@ impl WheelOnRail {
             scan_step,
             b_min,
             flange_tip,
+            wheel_convexity,
             samples: Vec::with_capacity(capacity),
             scan_lo: 0.0,
             scan_dw: scan_step,
@@ -407,6 +460,20 @@ impl WheelOnRail {
         (z, y_r)
     }
 
+    /// Trigonometry of `pose`, and whether its yaw leaves one lowest point per lateral.
+    fn prepare(&self, pose: &SidePose) -> Prepared {
+        let (sin_yaw, cos_yaw) = pose.yaw.sin_cos();
+        let tan_sq = (sin_yaw / cos_yaw).powi(2);
+        Prepared {
+            lateral: pose.lateral,
+            sin_yaw,
+            cos_yaw,
+            sin_roll: pose.roll.sin(),
+            cos_roll: pose.roll.cos(),
+            single_lowest_point: tan_sq * self.wheel_convexity < UNIMODAL_MARGIN,
+        }
+    }
+
     /// Lowest point of the (yawed) wheel at lateral `w`: (vertical coordinate below the axle,
     /// longitudinal position, wheel-profile lateral coordinate).
     fn wheel_at(&self, w: f64, p: &Prepared) -> (f64, f64, f64) {
@@ -416,14 +483,44 @@ impl WheelOnRail {
             let y_w = w - offset;
             return (r0 + self.wheel.z(y_w), 0.0, y_w);
         }
-        // Newton on X for the maximum of q(X) = r(l)² − d², safeguarded: the lowest point of a
-        // wheel lies within |d| ≤ r0/2 of the axle plane for any yaw a wheelset can have (the
-        // lead is r·tan γ·tan ψ), and one step moves at most r0/10.
+        // Newton on X for the maximum of q(X) = r(l)² − d², safeguarded by a bracket: the
+        // lowest point of a wheel lies within |d| ≤ r0/2 of the axle plane for any yaw a
+        // wheelset can have (the lead is r·tan γ·tan ψ), where q' = −2d cos ψ − 2r z' sin ψ
+        // has the sign of −d. Each step narrows the bracket [lo, hi] (q' > 0 at lo, < 0 at hi)
+        // and bisects it where Newton would leave it or q is not concave (a yawed flange's
+        // tight curvature, where plain Newton oscillates).
+        //
+        // q'' = 2(z'² + r z'') sin²ψ − 2 cos²ψ < 0 everywhere when tan²ψ (z'² + r z'')max < 1:
+        // then q has one maximum (at running yaw angles, |ψ| ≲ 0.03 rad for S1002). At larger
+        // yaw a yawed flange can give two (the tread-side and flange-side maxima, millimetres
+        // apart in height), so a coarse scan picks the higher one's bracket first.
         let x_of_d = |d: f64| (d - w * p.sin_yaw) / p.cos_yaw;
-        let (x_min, x_max) = (x_of_d(-0.5 * r0), x_of_d(0.5 * r0));
-        let max_step = 0.1 * r0;
+        let (mut lo, mut hi) = (x_of_d(-0.5 * r0), x_of_d(0.5 * r0));
         let mut x = -w * p.sin_yaw / p.cos_yaw;
-        for _ in 0..4 {
+        if !p.single_lowest_point {
+            // Only where the wheel profile exists (y = l − offset inside its range; beyond it the
+            // profile's linear continuation would invent a lower point).
+            let (y_lo, y_hi) = self.wheel.y_range();
+            let x_of_y = |y: f64| (w * p.cos_yaw - y - offset) / p.sin_yaw;
+            let (a, b) = (x_of_y(y_lo), x_of_y(y_hi));
+            (lo, hi) = (lo.max(a.min(b)), hi.min(a.max(b)));
+            if lo >= hi {
+                (lo, hi) = (x, x);
+            }
+            let q = |x: f64| {
+                let l = -x * p.sin_yaw + w * p.cos_yaw;
+                let d = x * p.cos_yaw + w * p.sin_yaw;
+                let r = r0 + self.wheel.z(l - offset);
+                r * r - d * d
+            };
+            let h = (hi - lo) / MULTI_START_SAMPLES as f64;
+            let best = (0..=MULTI_START_SAMPLES)
+                .map(|k| lo + h * k as f64)
+                .max_by(|&a, &b| q(a).total_cmp(&q(b)))
+                .unwrap_or(x);
+            (lo, hi, x) = ((best - h).max(lo), (best + h).min(hi), best);
+        }
+        for _ in 0..WHEEL_NEWTON_STEPS {
             let l = -x * p.sin_yaw + w * p.cos_yaw;
             let d = x * p.cos_yaw + w * p.sin_yaw;
             let (z, dz, d2z) = self.wheel.eval(l - offset);
@@ -431,10 +528,22 @@ impl WheelOnRail {
             let q1 = -2.0 * r * dz * p.sin_yaw - 2.0 * d * p.cos_yaw;
             let q2 =
                 2.0 * (dz * dz + r * d2z) * p.sin_yaw * p.sin_yaw - 2.0 * p.cos_yaw * p.cos_yaw;
-            if q2 >= 0.0 {
+            if q1 > 0.0 {
+                lo = x;
+            } else {
+                hi = x;
+            }
+            let newton = x - q1 / q2;
+            let next = if q2 < 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            let moved = (next - x).abs();
+            x = next;
+            if moved <= WHEEL_NEWTON_TOLERANCE || q1 == 0.0 {
                 break;
             }
-            x = (x - (q1 / q2).clamp(-max_step, max_step)).clamp(x_min, x_max);
         }
         let l = -x * p.sin_yaw + w * p.cos_yaw;
         let d = x * p.cos_yaw + w * p.sin_yaw;
@@ -627,7 +736,8 @@ impl WheelOnRail {
             lift,
             gap_n: 0.0,
         };
-        let wheel = project_on_plane(&plane, 0.0, |w| (self.wheel_at(w, p).0 + lift, ()));
+        // The tangent point itself always projects (dt/dw = 1/cos γ there).
+        let (wheel, _) = project_on_plane(&plane, 0.0, |w| (self.wheel_at(w, p).0 + lift, ()));
         plane.gap_n = -normal_coordinate(&plane, wheel.w, wheel.z);
         plane
     }
@@ -642,15 +752,21 @@ impl WheelOnRail {
     /// Rail and wheel points at in-plane coordinate `s` and their normal gap.
     fn gap_in_plane(&self, plane: &ContactPlane, s: f64) -> PlaneGap {
         let p = &self.pose;
-        let rail = project_on_plane(plane, s, |w| self.rail_at(w, p));
-        let wheel = project_on_plane(plane, s, |w| {
+        let (rail, rail_found) = project_on_plane(plane, s, |w| self.rail_at(w, p));
+        let (wheel, wheel_found) = project_on_plane(plane, s, |w| {
             let (z, x, y_wheel) = self.wheel_at(w, p);
             (z + plane.lift, (x, y_wheel))
         });
+        let found = rail_found && wheel_found;
         PlaneGap {
-            f: normal_coordinate(plane, rail.w, rail.z)
-                - normal_coordinate(plane, wheel.w, wheel.z)
-                - plane.gap_n,
+            f: if found {
+                normal_coordinate(plane, rail.w, rail.z)
+                    - normal_coordinate(plane, wheel.w, wheel.z)
+                    - plane.gap_n
+            } else {
+                UNREACHED_GAP
+            },
+            found,
             x: wheel.extra.0,
             w_rail: rail.w,
             y_rail: rail.extra,
@@ -677,9 +793,12 @@ impl WheelOnRail {
         let ds = (s_hi - s_lo) / n as f64;
         geom.n = n;
         geom.ds = ds;
-        let mut f_prev = self.gap_in_plane(plane, s_lo - 0.5 * ds).f;
+        let mut previous = self.gap_in_plane(plane, s_lo - 0.5 * ds);
         let mut current = self.gap_in_plane(plane, s_lo + 0.5 * ds);
-        for i in 0..n {
+        // Strips whose B stencil reaches a point without surfaces take the B of the nearest
+        // strip whose stencil is whole (such strips border a fold and are out of contact).
+        let mut whole_stencil = [false; MAX_STRIPS];
+        for (i, whole) in whole_stencil[..n].iter_mut().enumerate() {
             let s = s_lo + (i as f64 + 0.5) * ds;
             let next = self.gap_in_plane(plane, s + ds);
             let (_, dz_r, _) = self.rail.profile().eval(current.y_rail);
@@ -688,14 +807,27 @@ impl WheelOnRail {
             geom.s[i] = s;
             geom.f[i] = current.f;
             geom.curv_a[i] = 0.5 * gamma.cos() / radius;
-            geom.curv_b[i] = (next.f - 2.0 * current.f + f_prev) / (2.0 * ds * ds);
+            geom.curv_b[i] = (next.f - 2.0 * current.f + previous.f) / (2.0 * ds * ds);
+            *whole = previous.found && current.found && next.found;
             geom.x_c[i] = current.x;
             points.y_rail[i] = current.y_rail;
             points.contact_angle[i] = gamma;
             points.rolling_radius[i] = radius;
             points.lateral[i] = current.w_rail;
-            f_prev = current.f;
+            previous = current;
             current = next;
+        }
+        let whole = &whole_stencil[..n];
+        if whole.iter().any(|&w| !w) {
+            for i in 0..n {
+                if whole[i] {
+                    continue;
+                }
+                let nearest = (0..n).filter(|&j| whole[j]).min_by_key(|&j| j.abs_diff(i));
+                if let Some(j) = nearest {
+                    geom.curv_b[i] = geom.curv_b[j];
+                }
+            }
         }
     }
 
@@ -706,13 +838,7 @@ impl WheelOnRail {
         out: &mut ContactCandidates,
     ) -> Result<(), SearchError> {
         out.clear();
-        let p = Prepared {
-            lateral: pose.lateral,
-            sin_yaw: pose.yaw.sin(),
-            cos_yaw: pose.yaw.cos(),
-            sin_roll: pose.roll.sin(),
-            cos_roll: pose.roll.cos(),
-        };
+        let p = self.prepare(pose);
         self.pose = p;
         // `+ 0.0` turns −0 (a mirrored zero shift) into 0 for messages.
         let lateral = pose.lateral + 0.0;
@@ -784,5 +910,148 @@ impl WheelOnRail {
         }
         self.samples = samples;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn s1002_on_uic60() -> WheelOnRail {
+        let wheel = Profile::builtin("S1002").unwrap();
+        let rail = Profile::builtin("UIC60").unwrap();
+        WheelOnRail::new(
+            wheel,
+            &rail,
+            &TrackSetup::default(),
+            DEFAULT_SCAN_STEP,
+            DEFAULT_B_MIN,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn yawed_wheels_lowest_point_is_the_maximum_over_the_rolling_direction() {
+        // Brute force: the wheel's vertical extent sqrt(r(l)² − d²) over X on a 0.1 mm grid,
+        // refined by a parabola, against the Newton search, from the tread (l ≈ 0.75 m from the
+        // wheelset centre) across the flange, at yaw angles up to 0.1 rad (5.7°, far beyond
+        // running). Before the ascent fallback the search stopped where the flange makes
+        // r(l)² − d² locally convex and was off by millimetres.
+        let g = s1002_on_uic60();
+        // S1002 (flange-tip side left out): one lowest point below |ψ| ≈ 0.032 rad, so yaw 0.003
+        // and 0.02 take the plain Newton path and 0.05 and 0.1 the coarse scan.
+        let limit = (UNIMODAL_MARGIN / g.wheel_convexity).sqrt().atan();
+        assert!((0.025..0.04).contains(&limit), "{limit}");
+        for yaw in [0.003_f64, 0.02, 0.05, 0.1] {
+            let p = g.prepare(&SidePose {
+                lateral: 0.0,
+                yaw,
+                roll: 0.0,
+            });
+            let r0 = g.setup.wheel_radius;
+            let offset = g.setup.taping_line_offset();
+            for k in 0..=60 {
+                let w = 0.69 + 0.001 * k as f64;
+                // Points of the wheel profile only (beyond it there is no wheel).
+                let extent = |x: f64| {
+                    let l = -x * p.sin_yaw + w * p.cos_yaw;
+                    let d = x * p.cos_yaw + w * p.sin_yaw;
+                    let (lo, hi) = g.wheel.y_range();
+                    let y = l - offset;
+                    let r = r0 + g.wheel.z(y);
+                    if (lo..=hi).contains(&y) {
+                        (r * r - d * d).max(0.0).sqrt()
+                    } else {
+                        0.0
+                    }
+                };
+                let x0 = -w * p.sin_yaw / p.cos_yaw;
+                let best = (-3000..=3000)
+                    .map(|i| x0 + 1e-4 * i as f64)
+                    .map(|x| (x, extent(x)))
+                    .max_by(|a, b| a.1.total_cmp(&b.1))
+                    .unwrap();
+                let (z, _, _) = g.wheel_at(w, &p);
+                // The extent is flat at its maximum: 0.1 mm in X changes it by ≲ 1e−8 m (r·ψ²
+                // terms), so the brute force is good to 1e−8 m.
+                assert!(
+                    z >= best.1 - 1e-8 && z <= best.1 + 1e-8,
+                    "yaw {yaw}, w {w}: Newton {z}, brute force {} at x {}",
+                    best.1,
+                    best.0
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn plane_coordinates_past_a_fold_have_no_point() {
+        // z = c w² seen from a plane through the origin inclined by γ: t(w) = w cos γ − c w² sin γ
+        // peaks at t_max = cos²γ / (4 c sin γ); beyond it no point of the curve projects.
+        let plane = ContactPlane {
+            w0: 0.0,
+            z0: 0.0,
+            gamma: 0.5,
+            lift: 0.0,
+            gap_n: 0.0,
+        };
+        let c = 50.0;
+        let (sin_g, cos_g) = plane.gamma.sin_cos();
+        let t_max = cos_g * cos_g / (4.0 * c * sin_g);
+        for fraction in [-0.9, -0.3, 0.0, 0.3, 0.6] {
+            let s = fraction * t_max;
+            let (point, found) = project_on_plane(&plane, s, |w| (c * w * w, ()));
+            assert!(found, "{fraction}");
+            let t = point.w * cos_g - point.z * sin_g;
+            assert!((t - s).abs() < 1e-12, "{fraction}: {t} vs {s}");
+        }
+        for fraction in [1.05, 1.5, 3.0] {
+            let (_, found) = project_on_plane(&plane, fraction * t_max, |w| (c * w * w, ()));
+            assert!(!found, "{fraction}");
+        }
+    }
+
+    #[test]
+    fn strips_beyond_the_rails_fold_are_out_of_reach() {
+        // Right wheel near two-point contact (the soak's pose of docs/reliability.md bug C): the
+        // flange-root plane (γ ≈ 0.5 rad) sees the rail's gauge face fold away at its gauge end.
+        // Strips there have no rail point: they get UNREACHED_GAP instead of the −0.3 mm gap a
+        // non-converged projection gave (which put them in contact at any height).
+        let mut g = s1002_on_uic60();
+        let mut candidates = ContactCandidates::default();
+        let pose = SidePose {
+            lateral: 0.005_764_834_807_364_837,
+            yaw: 0.003_680_300_033_540_733_6,
+            roll: -0.001_771_984_582_068_964_5,
+        };
+        g.search(&pose, &mut candidates).unwrap();
+        let root = candidates
+            .as_slice()
+            .iter()
+            .find(|c| (0.45..0.55).contains(&c.contact_angle))
+            .copied()
+            .expect("a flange-root candidate at about 0.5 rad");
+        let plane = g.contact_plane(root.lateral, root.gap);
+        let mut geom = StripGeometry::default();
+        let mut points = StripPoints::default();
+        g.strip_geometry(&plane, -0.014, 0.005, 40, &mut geom, &mut points);
+        let unreached = geom.f[..geom.n]
+            .iter()
+            .filter(|&&f| f == UNREACHED_GAP)
+            .count();
+        assert!(unreached > 0, "the range reaches past the fold");
+        for i in 0..geom.n {
+            assert!(
+                geom.f[i] >= -1e-9,
+                "strip {i} at s {}: f {}",
+                geom.s[i],
+                geom.f[i]
+            );
+            assert!(
+                geom.curv_b[i].abs() < 1e4,
+                "strip {i}: B {}",
+                geom.curv_b[i]
+            );
+        }
     }
 }

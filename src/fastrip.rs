@@ -216,12 +216,16 @@ pub struct FastripStripSums {
 }
 
 /// Pressure along a strip, peak·√(1 − (X/half_length)²), X = x − x_c: the FASTSIM bound and
-/// the slip-zone magnitude μp. [`solve_strip`] uses the strip's own pressure; the CONTACT
-/// reproduction test uses the Hertz pressure under CONTACT's longer grid strips.
+/// the slip-zone magnitude μp. [`solve_strip`] uses the strip's own pressure scaled to sum to
+/// the strip's load on its elements ([`semi_ellipse_midpoint_ratio`]), [`solve_ellipse`] also
+/// across the strips; the CONTACT reproduction test uses the unscaled Hertz pressure under
+/// CONTACT's longer grid strips (CONTACT does not scale).
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct StripPressure {
-    peak: f64,
-    half_length: f64,
+pub(crate) struct StripPressure {
+    /// Peak of the bound's pressure [Pa].
+    pub(crate) peak: f64,
+    /// Half-length of the pressure's semi-ellipse [m].
+    pub(crate) half_length: f64,
 }
 
 impl StripPressure {
@@ -377,6 +381,19 @@ fn normalised_centre(i: usize, n: usize) -> f64 {
     }
 }
 
+/// Midpoint sum of the semi-ellipse √(1 − u²) over the centres of `n` equal elements of
+/// [−1, 1], relative to its integral π/2 [-]: +0.97 % at 10, +0.34 % at 20, +0.12 % at 40
+/// elements, → 1. Sampled pressures divided by it sum to the strip's load exactly.
+pub fn semi_ellipse_midpoint_ratio(n: usize) -> f64 {
+    let sum: f64 = (0..n)
+        .map(|i| {
+            let u = normalised_centre(i, n);
+            ((1.0 - u) * (1.0 + u)).max(0.0).sqrt()
+        })
+        .sum();
+    sum * (2.0 / n as f64) / std::f64::consts::FRAC_PI_2
+}
+
 /// Validity of a flexibility triple for the FASTSIM pass: positive, finite, finite reciprocal.
 fn usable_flexibilities(flex: [f64; 3]) -> bool {
     flex.iter()
@@ -419,8 +436,10 @@ pub fn solve_strip(
         qx.len() == nx && qy.len() == nx && slipping.len() == nx,
         "solve_strip: output slices must have length nx"
     );
+    // The bound's pressure sums to the strip's load on its nx elements (module header, choice
+    // 5): full sliding gives exactly μ × the strip's load.
     let own_pressure = StripPressure {
-        peak: strip.pmax,
+        peak: strip.pmax / semi_ellipse_midpoint_ratio(nx),
         half_length: strip.half_length,
     };
     solve_strip_with_pressure(
@@ -440,7 +459,7 @@ pub fn solve_strip(
 /// separately from the strip's strip-theory pressure (they coincide except when reproducing
 /// CONTACT's grid convention in the tests). The element count is the slices' length.
 #[allow(clippy::too_many_arguments)]
-fn solve_strip_with_pressure(
+pub(crate) fn solve_strip_with_pressure(
     strip: &FastripStrip,
     pressure: StripPressure,
     scales: &FastripScales,
@@ -752,6 +771,17 @@ pub fn solve_ellipse(
     let mut qy = vec![0.0; nx];
     let mut slipping = vec![false; nx];
     let dy = 2.0 * b / ny as f64;
+    // The strips' loads (π/2) pmax_j a_y,j dy ∝ 1 − Y_j² sum to N × this midpoint ratio (the
+    // integral of 1 − Y² over [−1, 1] is 4/3); the bound is divided by it, so that full sliding
+    // gives exactly μN.
+    let across: f64 = (0..ny)
+        .map(|j| {
+            let yn = normalised_centre(j, ny);
+            (1.0 - yn) * (1.0 + yn)
+        })
+        .sum::<f64>()
+        * (2.0 / ny as f64)
+        / (4.0 / 3.0);
     let (mut fx, mut fy, mut mz, mut power) = (0.0, 0.0, 0.0, 0.0);
     let (mut n_elements, mut n_adhesion, mut max_traction) = (0_usize, 0_usize, 0.0_f64);
     for j in 0..ny {
@@ -766,15 +796,17 @@ pub fn solve_ellipse(
             half_length,
             pmax: p0 * shape,
         };
-        let s = solve_strip(
+        let bound = StripPressure {
+            peak: strip.pmax / (semi_ellipse_midpoint_ratio(n_j) * across),
+            half_length,
+        };
+        let s = solve_strip_with_pressure(
             &strip,
+            bound,
             &scales,
             mu,
             flexibilities,
-            xi,
-            eta,
-            phi,
-            n_j,
+            [xi, eta, phi],
             &mut qx[..n_j],
             &mut qy[..n_j],
             &mut slipping[..n_j],
@@ -1068,10 +1100,10 @@ mod tests {
     fn full_sliding_saturates_at_mu_n() {
         // Large creepage: every element slides, |q| = μp along the FASTSIM direction, which for
         // pure or combined ξ, η (blended flexibilities fully blended, w = 1) is the rigid-slip
-        // direction; |F| = μ Σ p ΔA to rounding. Σ p ΔA is the midpoint sum of the Hertz
-        // pressure: measured +0.19 % over N at 40², +0.016 % at 200² (√-edges of p), so
-        // |F|/(μN) − 1 ∈ [0, 0.3 %] at 40² and [0, 0.03 %] at 200².
-        for (n, tol) in [(40, 3e-3), (200, 3e-4)] {
+        // direction; |F| = μ Σ p ΔA to rounding. The unscaled midpoint sum Σ p ΔA of the Hertz
+        // pressure is +0.19 % over N at 40², +0.016 % at 200² (√-edges of p); the bound is
+        // scaled along and across the strips so that |F| = μN to rounding on any grid.
+        for n in [1, 2, 7, 40, 200] {
             let sum_p: f64 = (0..n)
                 .map(|j| {
                     let s = hertz_strip(j, n);
@@ -1090,9 +1122,11 @@ mod tests {
                 let r = solve_ellipse(A, B, N, G, NU, MU, xi, eta, 0.0, n, n).unwrap();
                 assert_eq!(r.adhesion_fraction, 0.0);
                 let f = r.fx.hypot(r.fy);
-                assert!(rel(f, MU * sum_p) < 1e-12, "{f} {}", MU * sum_p);
-                let e = f / MU_N - 1.0;
-                assert!((0.0..tol).contains(&e), "{n}: {e}");
+                assert!(rel(f, MU_N) < 1e-12, "{n}: {f} {MU_N}");
+                if n >= 40 {
+                    let unscaled = sum_p / N - 1.0;
+                    assert!(unscaled > 0.0 && unscaled < 2e-3, "{n}: {unscaled}");
+                }
                 // Against the slip: F ∥ −(ξ, η).
                 let cross = r.fx * eta - r.fy * xi;
                 assert!(cross.abs() < 1e-12 * f, "{cross}");
@@ -1196,7 +1230,9 @@ mod tests {
                 let reference = textbook_strip(&scales, strip.y, strip.half_length, p0(), n);
                 for (i, expected) in reference.iter().enumerate() {
                     let z = normalised_centre(i, n);
-                    let mu_p = MU * strip.pmax * ((1.0 - z) * (1.0 + z)).sqrt();
+                    // The bound's pressure sums to the strip's load on its n elements.
+                    let mu_p = MU * strip.pmax * ((1.0 - z) * (1.0 + z)).sqrt()
+                        / semi_ellipse_midpoint_ratio(n);
                     let q = buf.qx[i].hypot(buf.qy[i]);
                     match *expected {
                         Some((rx, ry)) => {
@@ -1283,7 +1319,8 @@ mod tests {
                     let q = if xi != 0.0 { buf.qx[i] } else { buf.qy[i] };
                     let other = if xi != 0.0 { buf.qy[i] } else { buf.qx[i] };
                     assert_eq!(other, 0.0);
-                    let p = c_s * ((x_l - xr) * (x_l + xr)).sqrt();
+                    // The bound's pressure, scaled to the strip's load on its n elements.
+                    let p = c_s * ((x_l - xr) * (x_l + xr)).sqrt() / semi_ellipse_midpoint_ratio(n);
                     if xr > -x_l + 2.0 * d {
                         let s2 = ((x_l - d).powi(2) - (xr - d).powi(2)).max(0.0).sqrt();
                         let carter = -k.signum() * MU * c_s * ((x_l * x_l - xr * xr).sqrt() - s2);
@@ -1368,7 +1405,8 @@ mod tests {
         let (mut clamped, mut kept) = (0, 0);
         for (i, expected) in reference.iter().enumerate() {
             let z = normalised_centre(i, n);
-            let mu_p = MU * strip.pmax * ((1.0 - z) * (1.0 + z)).sqrt();
+            let mu_p =
+                MU * strip.pmax * ((1.0 - z) * (1.0 + z)).sqrt() / semi_ellipse_midpoint_ratio(n);
             let q = buf.qx[i].hypot(buf.qy[i]);
             assert!(q <= mu_p * (1.0 + 1e-12));
             if let Some((rx, ry)) = *expected {

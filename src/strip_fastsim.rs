@@ -58,6 +58,7 @@
 //! sized in [`StripFastsim::new`].
 
 use crate::error::InputError;
+use crate::fastrip::semi_ellipse_midpoint_ratio;
 use crate::fastsim::{Creepage, MarchScheme, StripMarch, StripOut};
 use crate::strips::MAX_STRIPS;
 
@@ -152,25 +153,22 @@ pub struct StripFastsim {
     /// The bound's shape √(1 − u_i²) at the element centres u_i ∈ (−1, 1), the same for every
     /// strip (precomputed: no square root per element in the march).
     shape: Vec<f64>,
+    /// [`semi_ellipse_midpoint_ratio`] of `nx` (FaStrip's bound is divided by it).
+    midpoint_ratio: f64,
 }
 
-/// The bound's shape √(1 − u_i²) at the element centres of a strip of `nx` elements. With the
-/// second-order march it is scaled so that its midpoint sum equals the semi-ellipse's integral
-/// π/2 (the strip's load): full sliding then gives exactly μ × the strip's normal force, where
-/// the plain midpoint sum is +0.35 % high at 20 elements (+0.12 % at 40).
-fn bound_shape(nx: usize, scheme: MarchScheme) -> Vec<f64> {
-    let mut shape: Vec<f64> = (0..nx)
+/// The bound's shape √(1 − u_i²) at the element centres of a strip of `nx` elements, scaled so
+/// that its midpoint sum equals the semi-ellipse's integral π/2 (the strip's load): full sliding
+/// then gives exactly μ × the strip's normal force, where the plain midpoint sum is +0.34 % high
+/// at 20 elements (+0.12 % at 40; [`semi_ellipse_midpoint_ratio`]).
+fn bound_shape(nx: usize) -> Vec<f64> {
+    let ratio = semi_ellipse_midpoint_ratio(nx);
+    (0..nx)
         .map(|i| {
             let u = element_centre(i, nx);
-            (1.0 - u * u).max(0.0).sqrt()
+            (1.0 - u * u).max(0.0).sqrt() / ratio
         })
-        .collect();
-    if scheme == MarchScheme::Midpoint {
-        let sum = shape.iter().sum::<f64>() * 2.0 / nx as f64;
-        let scale = std::f64::consts::FRAC_PI_2 / sum;
-        shape.iter_mut().for_each(|v| *v *= scale);
-    }
-    shape
+        .collect()
 }
 
 impl StripFastsim {
@@ -189,7 +187,8 @@ impl StripFastsim {
             slipping: vec![false; MAX_STRIPS * nx],
             geometry: vec![(0.0, 0.0, 0.0); MAX_STRIPS],
             n_strips: 0,
-            shape: bound_shape(nx, scheme),
+            shape: bound_shape(nx),
+            midpoint_ratio: semi_ellipse_midpoint_ratio(nx),
         })
     }
 
@@ -262,8 +261,11 @@ impl StripFastsim {
         equivalent: &crate::patch_tangential::EquivalentEllipse,
         speed: f64,
     ) -> StripFastsimResult {
-        use crate::fastrip::{solve_strip, FastripScales, FastripStrip};
+        use crate::fastrip::{
+            solve_strip_with_pressure, FastripScales, FastripStrip, StripPressure,
+        };
         let nx = self.nx;
+        let ratio = self.midpoint_ratio;
         let e = &equivalent.contact;
         let (a_e, b_e, g, nu, mu) = (e.a, e.b, e.shear_modulus, e.nu, e.mu);
         let (coefficients, p0_e) = (&equivalent.coefficients, equivalent.peak_pressure());
@@ -281,18 +283,21 @@ impl StripFastsim {
                 pmax: strip.pmax,
             };
             let (flex, w) = (strip.flexibility, strip.width);
-            let sums = solve_strip(
+            // The bound sums to the strip's load on its elements, as in `fastrip::solve_strip`.
+            let bound = StripPressure {
+                peak: strip.pmax / ratio,
+                half_length: strip.half_length,
+            };
+            let sums = solve_strip_with_pressure(
                 &strip_input,
+                bound,
                 &scales,
                 mu,
                 flex,
-                k.xi,
-                k.eta,
-                k.phi,
-                nx,
-                px_row,
-                py_row,
-                slip_row,
+                [k.xi, k.eta, k.phi],
+                &mut px_row[..nx],
+                &mut py_row[..nx],
+                &mut slip_row[..nx],
             );
             // FaStrip's sums are per unit strip width.
             Some(StripTotals {

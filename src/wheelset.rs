@@ -57,6 +57,16 @@ const MIN_NORMAL_SHARE: f64 = 0.05;
 const CREEP_PASSES: usize = 12;
 /// Relative tolerance of that update on the wheel load.
 const CREEP_TOLERANCE: f64 = 1e-7;
+/// Largest relative deviation of the carried vertical force from a prescribed wheel load before
+/// a step is refused ([`WheelsetError::Unbalanced`]). Balanced solutions meet the iteration
+/// tolerances (1e−9 normal, [`CREEP_TOLERANCE`] with creep); a normal force that jumps with the
+/// wheel height (Linder's strips entering contact, two regions merging) leaves the nearer end of
+/// the jump, ≤ 0.1 % in the tests; 1 % flags a solution that is wrong.
+pub const LOAD_CHECK_TOLERANCE: f64 = 1e-2;
+/// Absolute part of that check [N]: loads of micronewtons (1 µN and up is contact, below is
+/// lift-off) need approaches of ~1e−15 m, below the strip models' round-off; 0.01 N is nothing
+/// to a wheel that carries 1e4–1e5 N.
+pub const LOAD_CHECK_FLOOR: f64 = 1e-2;
 /// Iteration limit of the load balance (safeguarded secant; converges in ~5–10).
 const LOAD_ITERATIONS: usize = 60;
 
@@ -220,13 +230,35 @@ pub enum WheelsetError {
         side: &'static str,
         reason: SearchError,
     },
+    /// The normal model found no wheel height that carries the prescribed load to
+    /// [`LOAD_CHECK_TOLERANCE`]: the result would be wrong, so none is given.
+    Unbalanced {
+        side: &'static str,
+        /// Vertical force carried at the best height found [N].
+        carried: f64,
+        /// Prescribed wheel load [N].
+        load: f64,
+    },
 }
 
 impl std::fmt::Display for WheelsetError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             WheelsetError::Input(e) => e.fmt(f),
-            WheelsetError::NoContact { side, reason } => write!(f, "{side} wheel: {reason}"),
+            WheelsetError::NoContact { side, reason } => {
+                write!(f, "no contact: {side} wheel: {reason}")
+            }
+            WheelsetError::Unbalanced {
+                side,
+                carried,
+                load,
+            } => write!(
+                f,
+                "{side} wheel: the normal model carries {carried:.6e} N of the prescribed load \
+                 {load:.6e} N (allowed deviation {:.0e} of the load + {} N) at the best wheel \
+                 height found",
+                LOAD_CHECK_TOLERANCE, LOAD_CHECK_FLOOR
+            ),
         }
     }
 }
@@ -1019,12 +1051,36 @@ fn solve_side(
         let start = warm.map_or(0.0, |w| w.creep);
         creep = solve_strips(side, ctx, input, load, touch, start, out)?;
     }
+    check_balance(side.name, load, out)?;
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0).then(|| WarmStart {
         approach,
         creep: creep.unwrap_or(0.0),
     });
     Ok(())
+}
+
+/// Refuses a wheel whose vertical force misses its prescribed `load` [N] by more than
+/// [`LOAD_CHECK_TOLERANCE`] (or is not finite); no load (prescribed position) and lift-off pass.
+fn check_balance(
+    side: &'static str,
+    load: Option<f64>,
+    out: &SideResult,
+) -> Result<(), WheelsetError> {
+    let Some(q) = load.filter(|&q| q > 0.0) else {
+        return Ok(());
+    };
+    // The rail's vertical force on the wheel is −Fz (z down, docs/conventions.md).
+    let carried = -out.force[2];
+    if (carried - q).abs() <= LOAD_CHECK_TOLERANCE * q + LOAD_CHECK_FLOOR {
+        Ok(())
+    } else {
+        Err(WheelsetError::Unbalanced {
+            side,
+            carried,
+            load: q,
+        })
+    }
 }
 
 /// Multi-Hertzian solution of one wheel (also the starting guess of the strip models, then
@@ -1119,5 +1175,42 @@ impl CreepFixedPoint {
         };
         self.previous = Some((c, h));
         next
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn carrying(upward: f64) -> SideResult {
+        let mut out = SideResult::default();
+        out.force[2] = -upward;
+        out
+    }
+
+    #[test]
+    fn a_load_not_carried_is_refused_with_both_forces_named() {
+        let q = 92_536.0;
+        // Within the tolerance (a Linder-type jump of 0.1 %) and exactly balanced: accepted.
+        for upward in [q, q * (1.0 + 1e-3), q * (1.0 - 0.9 * LOAD_CHECK_TOLERANCE)] {
+            assert!(check_balance("right", Some(q), &carrying(upward)).is_ok());
+        }
+        // 18 % short (the ANALYN two-point case before its fix), nothing carried, NaN: refused.
+        for upward in [0.82 * q, 0.0, f64::NAN, 1.02 * q] {
+            let e = check_balance("right", Some(q), &carrying(upward)).unwrap_err();
+            assert!(matches!(e, WheelsetError::Unbalanced { side: "right", .. }));
+            let message = e.to_string();
+            assert!(
+                message.starts_with("right wheel: the normal model carries")
+                    && message.contains("9.253600e4 N")
+                    && message.contains("1e-2"),
+                "{message}"
+            );
+        }
+        // The absolute floor: 1 µN carried as nothing passes.
+        assert!(check_balance("right", Some(1e-6), &carrying(0.0)).is_ok());
+        // Prescribed position and lift-off are not checked.
+        assert!(check_balance("left", None, &carrying(0.0)).is_ok());
+        assert!(check_balance("left", Some(0.0), &carrying(0.0)).is_ok());
     }
 }

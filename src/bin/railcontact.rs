@@ -11,7 +11,8 @@
 //! identical numbers; the strip tables come from the same wheelset solver run directly (its patch
 //! semi-axes and curvatures are not FMU outputs).
 //!
-//! Exit codes: 0 success, 1 usage / case / profile / value error, 2 no contact inside the profiles.
+//! Exit codes: 0 success, 1 usage / case / profile / value error, 2 step refused (no contact
+//! inside the profiles, or a load the normal model cannot carry).
 
 use railcontact::case_json as json;
 #[path = "railcontact/report.rs"]
@@ -69,8 +70,9 @@ report  Reproduces the seed study's validation: writes SVG and PNG figures (patc
         directory (default ../shared/reference if it exists; without it no error table).
         --quick draws the creep curves at the reference creepages only. Progress on stderr.
 
-Exit codes: 0 success; 1 bad arguments, case file, profile file or value; 2 (solve) the pose
-has no contact inside the profiles.
+Exit codes: 0 success; 1 bad arguments, case file, profile file or value; 2 (solve) the step
+is refused: the pose has no contact inside the profiles, or the normal model cannot carry the
+prescribed load.
 ";
 
 /// Strips per patch in `solve`'s strip tables of Hertz patches.
@@ -85,15 +87,16 @@ const MAX_ROWS: usize = 100_000;
 enum Failure {
     /// Bad arguments, case, profile or value: exit code 1.
     Error(String),
-    /// The pose has no contact inside the profiles: exit code 2.
-    NoContact(String),
+    /// The step was refused (FMI Discard): the pose has no contact inside the profiles, or the
+    /// normal model cannot carry the load: exit code 2.
+    Discard(String),
 }
 
 impl Failure {
     fn code(&self) -> i32 {
         match self {
             Failure::Error(_) => 1,
-            Failure::NoContact(_) => 2,
+            Failure::Discard(_) => 2,
         }
     }
 }
@@ -102,7 +105,7 @@ impl From<ModelError> for Failure {
     fn from(e: ModelError) -> Self {
         match e {
             ModelError::Error(m) => Failure::Error(m),
-            ModelError::Discard(m) => Failure::NoContact(format!("no contact: {m}")),
+            ModelError::Discard(m) => Failure::Discard(m),
         }
     }
 }
@@ -111,7 +114,7 @@ fn main() {
     let code = match run() {
         Ok(code) => code,
         Err(f) => {
-            let (Failure::Error(m) | Failure::NoContact(m)) = &f;
+            let (Failure::Error(m) | Failure::Discard(m)) = &f;
             eprintln!("railcontact: {m}");
             f.code()
         }
@@ -704,7 +707,7 @@ fn sweep(case: Option<&str>, range: SweepRange) -> Result<(String, bool), Failur
         values.set_real(var::y, y);
         let row = match model.evaluate(&mut values, 0.0) {
             Ok(()) => Row::Values(["left", "right"].map(|side| side_row(&values, side))),
-            Err(ModelError::Discard(m)) => Row::Note(format!("no contact: {m}")),
+            Err(ModelError::Discard(m)) => Row::Note(m),
             Err(ModelError::Error(m)) => {
                 errors = true;
                 Row::Note(format!("error: {m}"))

@@ -404,7 +404,7 @@ impl Model for WheelRailContact {
         match solver.wheelset.solve(&input, &mut self.result) {
             Ok(()) => {}
             Err(WheelsetError::Input(e)) => return Err(e.into()),
-            Err(e @ WheelsetError::NoContact { .. }) => {
+            Err(e @ (WheelsetError::NoContact { .. } | WheelsetError::Unbalanced { .. })) => {
                 return Err(ModelError::Discard(e.to_string()))
             }
         }

@@ -143,7 +143,9 @@ impl Options {
 
 fn solve_error(e: WheelsetError) -> Failure {
     match e {
-        WheelsetError::NoContact { .. } => Failure::NoContact(format!("no contact: {e}")),
+        WheelsetError::NoContact { .. } | WheelsetError::Unbalanced { .. } => {
+            Failure::Discard(e.to_string())
+        }
         WheelsetError::Input(e) => Failure::Error(e.to_string()),
     }
 }
