@@ -96,7 +96,8 @@ pub enum FlexibilitySource {
 }
 
 /// The equivalent ellipse of a patch (physics.md §4.8): semi-axes with the patch's area S and
-/// length/width ratio L/W, a_e = √(S/π)·√(L/W), b_e = √(S/π)·√(W/L), carrying the patch's normal
+/// length/width ratio L/W (W the area-weighted spread width, `PatchSummary::spread_width`,
+/// which is continuous in the wheel height where the whole-strip extent jumps), a_e = √(S/π)·√(L/W), b_e = √(S/π)·√(W/L), carrying the patch's normal
 /// force, with its Kalker coefficients (computed once per patch).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EquivalentEllipse {
@@ -115,7 +116,8 @@ impl EquivalentEllipse {
         nu: f64,
         mu: f64,
     ) -> Result<Self, InputError> {
-        let aspect = (summary.length / summary.width).sqrt();
+        // The continuous spread width, not the whole-strip extent (see `PatchSummary`).
+        let aspect = (summary.length / summary.spread_width).sqrt();
         let radius = (summary.area / std::f64::consts::PI).sqrt();
         let (a, b) = (radius * aspect, radius / aspect);
         Ok(Self {

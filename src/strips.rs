@@ -192,6 +192,12 @@ pub struct PatchSummary {
     pub s_centroid: f64,
     /// Number of strips in contact.
     pub strips_in_contact: usize,
+    /// Width of the ellipse with the same area-weighted spread of s: 4 × the standard
+    /// deviation of s over the contact area (an ellipse's is b/2) [m]. Unlike [`Self::width`],
+    /// which jumps by Δs when a strip enters contact, it is continuous in the strips'
+    /// half-lengths (a strip enters with zero area), so quantities derived from it (the
+    /// equivalent ellipse of the tangential problem) do not jump with the wheel height.
+    pub spread_width: f64,
 }
 
 impl PatchSummary {
@@ -206,10 +212,14 @@ impl PatchSummary {
         let mut first = None;
         let mut last = 0;
         let mut moment = 0.0;
+        let (mut area_s, mut area_s2) = (0.0, 0.0);
         for i in 0..sol.n.min(geom.n) {
             if sol.half_length[i] <= 0.0 {
                 continue;
             }
+            let strip_area = 2.0 * sol.half_length[i] * geom.ds;
+            area_s += strip_area * geom.s[i];
+            area_s2 += strip_area * geom.s[i] * geom.s[i];
             first.get_or_insert(i);
             last = i;
             out.strips_in_contact += 1;
@@ -225,6 +235,13 @@ impl PatchSummary {
             out.width = out.s_max - out.s_min;
             if out.normal_force > 0.0 {
                 out.s_centroid = moment / out.normal_force;
+            }
+            if out.area > 0.0 {
+                let mean = area_s / out.area;
+                // Each strip spreads its area uniformly over Δs: + Δs²/12.
+                let variance =
+                    (area_s2 / out.area - mean * mean).max(0.0) + geom.ds * geom.ds / 12.0;
+                out.spread_width = 4.0 * variance.sqrt();
             }
         }
         out
@@ -501,6 +518,44 @@ impl HertzShapeTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn spread_width_is_an_ellipses_width_and_continuous_where_strips_enter() {
+        // An elliptic patch on 40 strips over [−b, b]: x_l = a √(1 − s²/b²).
+        let (a, b, n) = (6e-3, 4e-3, 40);
+        let mut geom = StripGeometry {
+            n: n + 1,
+            ds: 2.0 * b / n as f64,
+            ..StripGeometry::default()
+        };
+        let mut sol = StripSolution {
+            n: n + 1,
+            ..StripSolution::default()
+        };
+        for i in 0..=n {
+            geom.s[i] = -b + (i as f64 + 0.5) * geom.ds;
+            let t = (geom.s[i] / b).min(1.0);
+            sol.half_length[i] = a * ((1.0 - t) * (1.0 + t)).max(0.0).sqrt();
+            sol.force[i] = sol.half_length[i];
+        }
+        // Strip n lies beyond b: out of contact.
+        assert_eq!(sol.half_length[n], 0.0);
+        let base = PatchSummary::of(&geom, &sol);
+        // The area-weighted spread of an ellipse is b/2: 4σ = 2b, here to the midpoint rule's
+        // edge error (√-edges, ~(Δs/b)^{3/2}).
+        assert!(
+            (base.spread_width / (2.0 * b) - 1.0).abs() < 5e-3,
+            "{}",
+            base.spread_width
+        );
+        // A strip entering contact with a vanishing half-length moves the whole-strip width by
+        // Δs but the spread width by next to nothing.
+        sol.half_length[n] = 1e-12;
+        sol.force[n] = 1e-12;
+        let entered = PatchSummary::of(&geom, &sol);
+        assert!((entered.width - base.width - geom.ds).abs() < 1e-15);
+        assert!((entered.spread_width / base.spread_width - 1.0).abs() < 1e-8);
+    }
 
     #[test]
     fn table_matches_exact_hertz_to_1e7() {

@@ -1151,17 +1151,29 @@ fn hertz_side(
 
 /// Fixed-point iteration c ← g(c) on the creep forces' vertical component, accelerated by the
 /// secant on h(c) = g(c) − c once two iterates exist (Steffensen-like; falls back to the plain
-/// step when the secant is degenerate). The map is smooth and contracting (|g'| ≲ μ sin γ), so a
-/// few passes reach [`CREEP_TOLERANCE`].
+/// step when the secant is degenerate). The map is contracting (|g'| ≲ μ sin γ), so a few passes
+/// reach [`CREEP_TOLERANCE`] — but on strip patches g is only piecewise smooth: it jumps by a
+/// few newtons where the discretised tangential solution changes its element set with the
+/// wheel height, and across a jump the secant bounces between the two sides. So the iterates
+/// that bracket the root of h (h > 0 below, h < 0 above) are kept, and a step that would leave
+/// the bracket bisects it instead, closing on the root or on the jump.
 #[derive(Debug, Default)]
 struct CreepFixedPoint {
     previous: Option<(f64, f64)>,
+    /// Largest iterate with h > 0 and smallest with h < 0 so far.
+    below: Option<f64>,
+    above: Option<f64>,
 }
 
 impl CreepFixedPoint {
     /// The next iterate after evaluating g(`c`) = `g`.
     fn next(&mut self, c: f64, g: f64) -> f64 {
         let h = g - c;
+        if h > 0.0 {
+            self.below = Some(self.below.map_or(c, |b| b.max(c)));
+        } else if h < 0.0 {
+            self.above = Some(self.above.map_or(c, |a| a.min(c)));
+        }
         let next = match self.previous {
             Some((c0, h0)) if (h - h0).abs() > 0.0 && c != c0 => {
                 let secant = c - h * (c - c0) / (h - h0);
@@ -1174,7 +1186,10 @@ impl CreepFixedPoint {
             _ => g,
         };
         self.previous = Some((c, h));
-        next
+        match (self.below, self.above) {
+            (Some(lo), Some(hi)) if lo < hi && !(next > lo && next < hi) => 0.5 * (lo + hi),
+            _ => next,
+        }
     }
 }
 
