@@ -45,6 +45,9 @@ pub const DEFAULT_SCAN_STEP: f64 = 5e-4;
 /// plane is inclined by less than ~10°, i.e. the flange no longer guides the wheel.
 pub const FLANGE_TIP_MARGIN: f64 = 2e-3;
 
+/// Fraction of a region's depth at which its reference point is taken (see `regions`).
+const VIRTUAL_FRACTION: f64 = crate::kik_piotrowski::KP_EPSILON;
+
 /// Iteration limit of the yawed wheel's lowest-point search (Newton converges in 2–3 steps from
 /// the axle-plane guess at the yaw angles of running; bisection halves the 0.46 m bracket to
 /// 1e−9 m in 29 steps where Newton cannot be trusted).
@@ -672,7 +675,23 @@ impl WheelOnRail {
                 i -= 1;
             }
             let start = i;
-            let centroid = moment / weight;
+            // The contact patch lies inside the virtual interpenetration region at ε × the
+            // depth (Kik–Piotrowski's ε): its force centroid is the reference point.
+            let depth = dz - s[deepest].gap;
+            let cut = dz - VIRTUAL_FRACTION * depth;
+            let (mut weight, mut moment) = (0.0, 0.0);
+            for (k, sample) in s.iter().enumerate().take(end + 1).skip(start) {
+                let virtual_depth = cut - sample.gap;
+                if virtual_depth > 0.0 {
+                    weight += virtual_depth;
+                    moment += virtual_depth * k as f64;
+                }
+            }
+            let centroid = if weight > 0.0 {
+                moment / weight
+            } else {
+                deepest as f64
+            };
             let region = Region {
                 first: start,
                 last: end,

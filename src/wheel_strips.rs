@@ -230,7 +230,13 @@ impl StripSide {
                     i -= 1;
                 }
                 let first = i;
-                if first == 0 || last == n - 1 {
+                // A run at the end of the range needs a wider range only where the gap still
+                // rises outwards there; where it falls, the run leans on a neighbouring contact
+                // (two-point contact seen from this patch's plane, which has its own region),
+                // and widening would only merge the two.
+                let open_low = first == 0 && (n < 2 || old.geom.f[0] >= old.geom.f[1]);
+                let open_high = last == n - 1 && (n < 2 || old.geom.f[n - 1] >= old.geom.f[n - 2]);
+                if open_low || open_high {
                     contained = false;
                 }
                 // Rail points one old strip beyond the run (or the run's own end strips).

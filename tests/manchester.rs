@@ -441,25 +441,6 @@ fn tread_states_match_contact_reference() {
     assert_eq!(left.iter().filter(|r| r.tread()).count(), 21);
     let mut failures = tread_failures("right", &right);
     failures.extend(tread_failures("left", &left));
-    // Known gap (issue 3 stays open for it): the right wheel at 0.5 mm is near-conformal — the
-    // rigid interpenetration region is > 15 mm wide and ~20 µm deep — and the multi-Hertzian
-    // stage places the patch's reference point 1.95 mm towards the tread from CONTACT's. The
-    // exception is pinned at its measured size, and must be removed once the gap closes.
-    let known_gap = |line: &String| line.starts_with("right wheel y = 0.5 mm: yRail");
-    let gap = right
-        .iter()
-        .find(|r| r.y_mm == 0.5)
-        .map(|r| r.d_pos().abs())
-        .expect("state 0.5 mm");
-    assert!(
-        gap > POSITION_TOL_MM,
-        "the known gap at right 0.5 mm has closed ({gap:.3} mm): remove it from this test"
-    );
-    assert!(
-        gap < KNOWN_GAP_RIGHT_0_5_MM,
-        "the known gap at right 0.5 mm grew to {gap:.3} mm (pinned below {KNOWN_GAP_RIGHT_0_5_MM})"
-    );
-    failures.retain(|line| !known_gap(line));
     assert!(
         failures.is_empty(),
         "{} tread-state check(s) outside the acceptance:\n  {}",
@@ -467,9 +448,6 @@ fn tread_states_match_contact_reference() {
         failures.join("\n  ")
     );
 }
-
-/// Pinned size of the one known position gap [mm] (measured 1.946 mm).
-const KNOWN_GAP_RIGHT_0_5_MM: f64 = 2.0;
 
 /// The right wheel jumps to the flange root between 4.5 and 5.0 mm and onto the flange between
 /// 6.0 and 6.5 mm, as in the reference: every state is in the reference's contact class.
