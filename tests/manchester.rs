@@ -631,7 +631,7 @@ fn vertical_balance_and_finite_outputs_over_the_sweep() {
 /// `--nocapture`; asserted: every state finite and positive for every model, and ANALYN within
 /// ±15 % in area and ±20 % in pmax on the tread states 0…4.5 mm except at 0.5 mm — the
 /// near-conformal two-point state where the reference's own fast methods err by 18–21 % in area
-/// and the contact position (the issue-3 gap) already differs by 2 mm.
+/// and the strip models' contact positions differ by up to 2.7 mm.
 #[test]
 fn non_elliptic_models_area_and_pmax_against_contact() {
     let d = data();
