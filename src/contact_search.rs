@@ -338,9 +338,9 @@ fn wheel_convexity(wheel: &Profile, radius: f64, from: f64) -> f64 {
 
 /// Solves t(w) = (w − w0) cos γ − (z(w) − z0) sin γ = s for a curve w ↦ (z, extra) by a secant
 /// iteration started on the tangent (dt/dw = 1/cos γ at the tangent point and varies slowly
-/// near a patch). The flag is false when it does not converge: beyond a point where the curve turns steeper
-/// than the plane's normal (a rail's gauge face seen from a flange-root plane) t(w) has a
-/// maximum, and in-plane coordinates past it have no point of the curve.
+/// near a patch). The flag is false when it does not converge: beyond a point where the curve
+/// turns steeper than the plane's normal (a rail's gauge face seen from a flange-root plane)
+/// t(w) has a maximum, and in-plane coordinates past it have no point of the curve.
 fn project_on_plane<T: Copy>(
     plane: &ContactPlane,
     s: f64,
@@ -950,11 +950,11 @@ mod tests {
 
     #[test]
     fn yawed_wheels_lowest_point_is_the_maximum_over_the_rolling_direction() {
-        // Brute force: the wheel's vertical extent sqrt(r(l)² − d²) over X on a 0.1 mm grid,
-        // refined by a parabola, against the Newton search, from the tread (l ≈ 0.75 m from the
-        // wheelset centre) across the flange, at yaw angles up to 0.1 rad (5.7°, far beyond
-        // running). Before the ascent fallback the search stopped where the flange makes
-        // r(l)² − d² locally convex and was off by millimetres.
+        // Brute force: the wheel's vertical extent sqrt(r(l)² − d²) over X on a 0.1 mm grid
+        // against the search, from the tread (l ≈ 0.75 m from the wheelset centre) across the
+        // flange, at yaw angles up to 0.1 rad (5.7°, far beyond running). Before the bracket the
+        // plain Newton stopped where the flange makes r(l)² − d² locally convex, or oscillated
+        // between two points, and was off by millimetres.
         let g = s1002_on_uic60();
         // S1002 (flange-tip side left out): one lowest point below |ψ| ≈ 0.032 rad, so yaw 0.003
         // and 0.02 take the plain Newton path and 0.05 and 0.1 the coarse scan.

@@ -229,6 +229,15 @@ pub(crate) struct StripPressure {
 }
 
 impl StripPressure {
+    /// The strip's own semi-elliptic pressure divided by `ratio` (the bound's scale: its midpoint
+    /// sum relative to the load, [`semi_ellipse_midpoint_ratio`]).
+    pub(crate) fn scaled(strip: &FastripStrip, ratio: f64) -> Self {
+        Self {
+            peak: strip.pmax / ratio,
+            half_length: strip.half_length,
+        }
+    }
+
     /// Shape factor √(1 − (X/h)²) ∈ [0, 1] at X (0 outside the strip).
     fn shape(&self, xr: f64) -> f64 {
         let t = xr / self.half_length;
@@ -438,10 +447,7 @@ pub fn solve_strip(
     );
     // The bound's pressure sums to the strip's load on its nx elements (module header, choice
     // 5): full sliding gives exactly μ × the strip's load.
-    let own_pressure = StripPressure {
-        peak: strip.pmax / semi_ellipse_midpoint_ratio(nx),
-        half_length: strip.half_length,
-    };
+    let own_pressure = StripPressure::scaled(strip, semi_ellipse_midpoint_ratio(nx));
     solve_strip_with_pressure(
         strip,
         own_pressure,
@@ -796,10 +802,7 @@ pub fn solve_ellipse(
             half_length,
             pmax: p0 * shape,
         };
-        let bound = StripPressure {
-            peak: strip.pmax / (semi_ellipse_midpoint_ratio(n_j) * across),
-            half_length,
-        };
+        let bound = StripPressure::scaled(&strip, semi_ellipse_midpoint_ratio(n_j) * across);
         let s = solve_strip_with_pressure(
             &strip,
             bound,

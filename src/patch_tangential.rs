@@ -97,7 +97,8 @@ pub enum FlexibilitySource {
 
 /// The equivalent ellipse of a patch (physics.md §4.8): semi-axes with the patch's area S and
 /// length/width ratio L/W (W the area-weighted spread width, `PatchSummary::spread_width`,
-/// which is continuous in the wheel height where the whole-strip extent jumps), a_e = √(S/π)·√(L/W), b_e = √(S/π)·√(W/L), carrying the patch's normal
+/// which is continuous in the wheel height where the whole-strip extent jumps),
+/// a_e = √(S/π)·√(L/W), b_e = √(S/π)·√(W/L), carrying the patch's normal
 /// force, with its Kalker coefficients (computed once per patch).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EquivalentEllipse {

@@ -160,9 +160,8 @@ pub struct StripFastsim {
 /// The bound's shape √(1 − u_i²) at the element centres of a strip of `nx` elements, scaled so
 /// that its midpoint sum equals the semi-ellipse's integral π/2 (the strip's load): full sliding
 /// then gives exactly μ × the strip's normal force, where the plain midpoint sum is +0.34 % high
-/// at 20 elements (+0.12 % at 40; [`semi_ellipse_midpoint_ratio`]).
-fn bound_shape(nx: usize) -> Vec<f64> {
-    let ratio = semi_ellipse_midpoint_ratio(nx);
+/// at 20 elements (+0.12 % at 40): `ratio` = [`semi_ellipse_midpoint_ratio`] of `nx`.
+fn bound_shape(nx: usize, ratio: f64) -> Vec<f64> {
     (0..nx)
         .map(|i| {
             let u = element_centre(i, nx);
@@ -177,6 +176,7 @@ impl StripFastsim {
         if !(1..=MAX_ELEMENTS).contains(&nx) {
             return Err(InputError::new("nx", nx as f64, "[1, 1000]"));
         }
+        let midpoint_ratio = semi_ellipse_midpoint_ratio(nx);
         Ok(Self {
             nx,
             scheme,
@@ -187,8 +187,8 @@ impl StripFastsim {
             slipping: vec![false; MAX_STRIPS * nx],
             geometry: vec![(0.0, 0.0, 0.0); MAX_STRIPS],
             n_strips: 0,
-            shape: bound_shape(nx),
-            midpoint_ratio: semi_ellipse_midpoint_ratio(nx),
+            shape: bound_shape(nx, midpoint_ratio),
+            midpoint_ratio,
         })
     }
 
@@ -284,10 +284,7 @@ impl StripFastsim {
             };
             let (flex, w) = (strip.flexibility, strip.width);
             // The bound sums to the strip's load on its elements, as in `fastrip::solve_strip`.
-            let bound = StripPressure {
-                peak: strip.pmax / ratio,
-                half_length: strip.half_length,
-            };
+            let bound = StripPressure::scaled(&strip_input, ratio);
             let sums = solve_strip_with_pressure(
                 &strip_input,
                 bound,
