@@ -721,7 +721,8 @@ mod tests {
     fn shape_correction_on_a_hertz_gap() {
         // KP8: a = √(a_v b_v ρ_H), b = √(a_v b_v/ρ_H), area π a_v b_v unchanged. The corrected
         // half-lengths are sampled from the parabola-interpolated gap, exact for f = B s², so
-        // they equal a √(1 − s²/b²) to round-off (1e−9); the summary's length within the
+        // they equal a √(1 − s²/b²) to the shape table's error in ρ_H (< 1e−8, strips' tests;
+        // 1.2e−9 seen); the summary's length within the
         // strip-sampling error (Δs/2b)²/2 + the stretch's table error (1e−7), width within Δs,
         // area against the uncorrected one within the two midpoint sums' edge errors (2e−3).
         let params = NormalParams {
@@ -771,7 +772,7 @@ mod tests {
             );
             assert!((n / (lambda * h.normal_force) - 1.0).abs() < tol);
             assert!((p0 * lambda / h.p0 - 1.0).abs() < tol);
-            assert!(profile < 1e-9);
+            assert!(profile < 1e-8);
             let sampling = 0.5 * (0.5 * geom.ds / b).powi(2) + 1e-7;
             assert!((sum.length / (2.0 * a) - 1.0).abs() <= sampling);
             assert!((sum.width - 2.0 * b).abs() <= geom.ds);

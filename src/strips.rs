@@ -418,11 +418,14 @@ const SHAPE_TABLE_STEP: f64 = 0.02;
 const SHAPE_TABLE_NODES: usize = (2.0 * SHAPE_TABLE_RANGE / SHAPE_TABLE_STEP) as usize + 1;
 
 /// [`HertzShape`] tabulated on a uniform grid in u = ln(A/B) with 4-point cubic (Lagrange)
-/// interpolation in each of ln ε_x, ln(a/b) and ln P. Built once (~1600 exact solves,
-/// a few milliseconds); lookups cost a logarithm and a few multiplications.
+/// interpolation in each of ε_x, a/b and P. They vary like e^{cu} with |c| ≤ 1 (power laws in
+/// A/B towards line contact), whose cubic interpolation at this step is relatively exact to
+/// ~c⁴Δu⁴/40 ≈ 4e−9 — interpolating the values, not their logarithms, spares three
+/// exponentials per lookup (the per-strip cost of the strip models). Built once (~1600 exact
+/// solves, a few milliseconds); lookups cost a logarithm and a few multiplications.
 #[derive(Debug, Clone)]
 pub struct HertzShapeTable {
-    /// Per node: ln ε_x, ln(a/b), ln P.
+    /// Per node: ε_x, a/b, P.
     nodes: Vec<[f64; 3]>,
 }
 
@@ -439,7 +442,7 @@ impl HertzShapeTable {
                 let u = -SHAPE_TABLE_RANGE + SHAPE_TABLE_STEP * k as f64;
                 let h = hertz_shape_exact((0.5 * u).exp(), (-0.5 * u).exp())
                     .expect("curvature ratios inside the table range are solvable");
-                [h.eps_x.ln(), h.a_over_b.ln(), h.p0_coeff.ln()]
+                [h.eps_x, h.a_over_b, h.p0_coeff]
             })
             .collect();
         Self { nodes }
@@ -508,9 +511,9 @@ impl HertzShapeTable {
             }
         }
         HertzShape {
-            eps_x: v[0].exp(),
-            a_over_b: v[1].exp(),
-            p0_coeff: v[2].exp(),
+            eps_x: v[0],
+            a_over_b: v[1],
+            p0_coeff: v[2],
         }
     }
 }
@@ -562,6 +565,7 @@ mod tests {
         // Tolerance: the interpolation error bound in SHAPE_TABLE_STEP's comment.
         let table = HertzShapeTable::new();
         let mut u: f64 = -15.0;
+        let mut worst = 0.0_f64;
         while u < 15.0 {
             let exact = hertz_shape_exact((0.5 * u).exp(), (-0.5 * u).exp()).unwrap();
             let t = table.at_log_ratio(u);
@@ -571,9 +575,12 @@ mod tests {
                 (t.p0_coeff, exact.p0_coeff),
             ] {
                 assert!(((a - b) / b).abs() < 1e-7, "u = {u}: {a} vs {b}");
+                worst = worst.max(((a - b) / b).abs());
             }
             u += 0.0137;
         }
+        // Interpolating the values themselves reaches 8e−10 on this sweep.
+        assert!(worst < 1e-8, "{worst}");
     }
 
     #[test]
