@@ -59,6 +59,7 @@ impl StripPatch {
         geometry: &WheelOnRail,
         (w0, lift): (f64, f64),
         ends: (f64, f64),
+        strips: usize,
         settings: &StripSettings,
         table: &HertzShapeTable,
     ) {
@@ -70,7 +71,7 @@ impl StripPatch {
             &plane,
             s_a.min(s_b),
             s_a.max(s_b),
-            settings.strips,
+            strips,
             &mut self.geom,
             &mut self.points,
         );
@@ -131,6 +132,16 @@ const LOAD_ITERATIONS: usize = 80;
 const RANGE_FACTOR: f64 = 2.0;
 /// Range widenings before giving up on containing a patch (each doubles the trial approach).
 const RANGE_RETRIES: usize = 4;
+
+/// Strips of the first layout (step 1) for `strips` on the final patches: half as many. The
+/// first layout only has to find where each model's patch lies (its runs of strips in
+/// contact); the final strips cover a run plus one first-layout strip at each end, so halving
+/// the first layout widens that margin by a few per cent of the patch while sparing half of the
+/// first layout's geometry and load iteration (the strip models' largest cost after the
+/// tangential problem). Never fewer than 5 (or `strips` if smaller): a run must stay resolved.
+fn first_layout_strips(strips: usize) -> usize {
+    strips.div_ceil(2).max(strips.min(5))
+}
 
 /// The deepest contact candidate with its lateral in [w_min, w_max]: (lateral, vertical gap).
 fn deepest_candidate(candidates: &ContactCandidates, w_min: f64, w_max: f64) -> Option<(f64, f64)> {
@@ -199,7 +210,8 @@ impl StripSide {
                 geometry.lateral_at(region.first as f64 - 1.0),
                 geometry.lateral_at(region.last as f64 + 1.0),
             );
-            self.patches[self.count].set_up(geometry, origin, ends, settings, table);
+            let strips = first_layout_strips(settings.strips);
+            self.patches[self.count].set_up(geometry, origin, ends, strips, settings, table);
             self.count += 1;
         }
     }
@@ -252,7 +264,8 @@ impl StripSide {
                     old.points.lateral[origin],
                     old.plane.lift + old.geom.f[origin] / old.plane.gamma.cos(),
                 ));
-                self.spare[count].set_up(geometry, origin, (w_lo, w_hi), settings, table);
+                let ends = (w_lo, w_hi);
+                self.spare[count].set_up(geometry, origin, ends, settings.strips, settings, table);
                 count += 1;
             }
         }
