@@ -516,7 +516,11 @@ impl WheelOnRail {
         let z = -y * p.sin_roll + (z_r - z_centre) * p.cos_roll;
         // w = y cos θ + (z_r − z_c) sin θ and z = −y sin θ + (z_r − z_c) cos θ along the rail
         // (dy = dy_r, dz_r = z_r' dy_r).
-        let slope = (dz_r * p.cos_roll - p.sin_roll) / (p.cos_roll + dz_r * p.sin_roll);
+        let slope = if p.sin_roll == 0.0 {
+            dz_r
+        } else {
+            (dz_r * p.cos_roll - p.sin_roll) / (p.cos_roll + dz_r * p.sin_roll)
+        };
         RailPoint {
             z,
             slope,
