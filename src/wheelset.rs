@@ -31,7 +31,7 @@ use crate::contact_search::{
 use crate::error::InputError;
 use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use crate::hertz::{contact_modulus, shear_modulus};
-use crate::load_balance::balance;
+use crate::load_balance::balance_hertzian;
 use crate::patch_tangential::{strip_flexibilities, EquivalentEllipse, TangentialModel};
 use crate::point_contact::Material;
 use crate::profile::Profile;
@@ -1134,7 +1134,7 @@ fn hertz_side(
         (w.approach, if tangential { w.creep } else { 0.0 })
     });
     creep_passes(q, start_creep, |_, target| {
-        let balanced = balance(touch, first_approach, target, LOAD_ITERATIONS, |dz| {
+        let balanced = balance_hertzian(touch, first_approach, target, LOAD_ITERATIONS, |dz| {
             Ok::<_, InputError>(evaluate_side(side, ctx, input, dz, out, false)? - target)
         })?;
         first_approach = balanced.lowering - touch;
