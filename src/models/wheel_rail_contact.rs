@@ -413,8 +413,8 @@ impl Model for WheelRailContact {
     }
 
     /// The load iteration's warm starts (`wheelset::WarmStart`, left then right): a version
-    /// byte, then per wheel a presence byte and the approach [m] and creep component [N] as
-    /// little-endian f64. Nothing before initialization.
+    /// byte, then per wheel a presence byte and the approach [m], creep component [N] and their
+    /// changes over the last step as little-endian f64. Nothing before initialization.
     fn save_state(&self, out: &mut Vec<u8>) {
         if let Some(solver) = &self.solver {
             write_warm_start(solver.wheelset.warm_start(), out);
@@ -437,10 +437,10 @@ impl Model for WheelRailContact {
     }
 }
 
-/// Version of the warm-start layout in FMU states.
-const WARM_STATE_VERSION: u8 = 1;
-/// Bytes of one wheel's warm start: presence flag, approach, creep component.
-const WARM_SIDE_BYTES: usize = 1 + 2 * 8;
+/// Version of the warm-start layout in FMU states (2: with the changes over the last step).
+const WARM_STATE_VERSION: u8 = 2;
+/// Bytes of one wheel's warm start: presence flag, approach, creep component, their changes.
+const WARM_SIDE_BYTES: usize = 1 + 4 * 8;
 
 /// Appends the warm starts in the layout of [`Model::save_state`].
 fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
@@ -450,14 +450,17 @@ fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
         let w = side.unwrap_or(WarmStart {
             approach: 0.0,
             creep: 0.0,
+            approach_step: 0.0,
+            creep_step: 0.0,
         });
-        out.extend_from_slice(&w.approach.to_le_bytes());
-        out.extend_from_slice(&w.creep.to_le_bytes());
+        for v in [w.approach, w.creep, w.approach_step, w.creep_step] {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
     }
 }
 
 /// Reads what [`Model::save_state`] wrote; rejects any other length, version or flag, and
-/// non-finite or non-positive approaches.
+/// non-finite values or non-positive approaches.
 fn parse_warm_start(bytes: &[u8]) -> Result<[Option<WarmStart>; 2], String> {
     let expected = 1 + 2 * WARM_SIDE_BYTES;
     if bytes.len() != expected || bytes[0] != WARM_STATE_VERSION {
@@ -479,15 +482,22 @@ fn parse_warm_start(bytes: &[u8]) -> Result<[Option<WarmStart>; 2], String> {
             f64::from_le_bytes(b)
         };
         let (approach, creep) = (f64_at(1), f64_at(9));
+        let (approach_step, creep_step) = (f64_at(17), f64_at(25));
+        let finite = [creep, approach_step, creep_step]
+            .iter()
+            .all(|v| v.is_finite());
         *side = match chunk[0] {
             0 => None,
-            1 if approach > 0.0 && approach.is_finite() && creep.is_finite() => {
-                Some(WarmStart { approach, creep })
-            }
+            1 if approach > 0.0 && approach.is_finite() && finite => Some(WarmStart {
+                approach,
+                creep,
+                approach_step,
+                creep_step,
+            }),
             flag => {
                 return Err(format!(
                     "FMU state: invalid warm start (flag {flag}, approach {approach} m, creep \
-                     component {creep} N)"
+                     component {creep} N, their changes {approach_step} m and {creep_step} N)"
                 ))
             }
         };
@@ -512,26 +522,36 @@ mod tests {
             Some(WarmStart {
                 approach: 8.1e-5,
                 creep: -123.25,
+                approach_step: -2.5e-8,
+                creep_step: 0.75,
             }),
         ];
         let bytes = bytes_of(warm);
         assert_eq!(parse_warm_start(&bytes), Ok(warm));
-        // Wrong length, version, flag; a non-positive or non-finite approach; a NaN creep.
+        // Wrong length, version, flag; a non-positive or non-finite approach; a NaN creep or
+        // change.
         assert!(parse_warm_start(&bytes[..bytes.len() - 1]).is_err());
         let mut v = bytes.clone();
-        v[0] = 2;
+        v[0] = 1;
         assert!(parse_warm_start(&v).is_err());
         let mut v = bytes.clone();
         v[1] = 7;
         assert!(parse_warm_start(&v).is_err());
-        for (approach, creep) in [
-            (0.0, 0.0),
-            (-1e-5, 0.0),
-            (f64::INFINITY, 0.0),
-            (1e-5, f64::NAN),
+        for (approach, creep, creep_step) in [
+            (0.0, 0.0, 0.0),
+            (-1e-5, 0.0, 0.0),
+            (f64::INFINITY, 0.0, 0.0),
+            (1e-5, f64::NAN, 0.0),
+            (1e-5, 0.0, f64::INFINITY),
         ] {
-            let v = bytes_of([Some(WarmStart { approach, creep }), None]);
-            assert!(parse_warm_start(&v).is_err(), "{approach} {creep}");
+            let w = WarmStart {
+                approach,
+                creep,
+                approach_step: 0.0,
+                creep_step,
+            };
+            let v = bytes_of([Some(w), None]);
+            assert!(parse_warm_start(&v).is_err(), "{w:?}");
         }
     }
 }
