@@ -333,6 +333,10 @@ pub struct StripPoints {
     pub y_rail: [f64; MAX_STRIPS],
     /// Local contact angle of the rail (positive towards the flange) [rad].
     pub contact_angle: [f64; MAX_STRIPS],
+    /// Its sine and cosine (from the rail's slope, no trigonometry: the tangential problem
+    /// needs them per strip).
+    pub sin_angle: [f64; MAX_STRIPS],
+    pub cos_angle: [f64; MAX_STRIPS],
     /// Rolling radius of the wheel point [m].
     pub rolling_radius: [f64; MAX_STRIPS],
     /// Lateral coordinate of the rail point (wheelset frame) [m].
@@ -344,6 +348,8 @@ impl Default for StripPoints {
         Self {
             y_rail: [0.0; MAX_STRIPS],
             contact_angle: [0.0; MAX_STRIPS],
+            sin_angle: [0.0; MAX_STRIPS],
+            cos_angle: [0.0; MAX_STRIPS],
             rolling_radius: [0.0; MAX_STRIPS],
             lateral: [0.0; MAX_STRIPS],
         }
@@ -986,15 +992,18 @@ impl WheelOnRail {
             let slope = current.rail_slope;
             let gamma = -slope.atan();
             let radius = current.radius;
+            // γ = −atan z_r': cos γ = 1/√(1 + z_r'²), sin γ = −z_r' cos γ.
+            let cos_gamma = 1.0 / (1.0 + slope * slope).sqrt();
             geom.s[i] = s;
             geom.f[i] = current.f;
-            // cos γ = 1/√(1 + z_r'²).
-            geom.curv_a[i] = 0.5 / ((1.0 + slope * slope).sqrt() * radius);
+            geom.curv_a[i] = 0.5 * cos_gamma / radius;
             geom.curv_b[i] = (next.f - 2.0 * current.f + previous.f) / (2.0 * ds * ds);
             *whole = previous.found && current.found && next.found;
             geom.x_c[i] = current.x;
             points.y_rail[i] = current.y_rail;
             points.contact_angle[i] = gamma;
+            points.cos_angle[i] = cos_gamma;
+            points.sin_angle[i] = -slope * cos_gamma;
             points.rolling_radius[i] = radius;
             points.lateral[i] = current.w_rail;
             previous = current;

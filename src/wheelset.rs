@@ -566,7 +566,18 @@ fn creepages_at(
     p: &ContactPoint,
     gamma: f64,
 ) -> (Creepage, f64) {
-    let (sin_g, cos_g) = gamma.sin_cos();
+    creepages_with(input, sigma, p, gamma.sin_cos(), input.yaw.sin_cos())
+}
+
+/// [`creepages_at`] with the contact angle's (sin γ, cos γ) and the yaw's (sin ψ, cos ψ) given
+/// (the strip loops have them at hand).
+fn creepages_with(
+    input: &WheelsetInput,
+    sigma: f64,
+    p: &ContactPoint,
+    (sin_g, cos_g): (f64, f64),
+    (sin_y, cos_y): (f64, f64),
+) -> (Creepage, f64) {
     match input.creepages {
         Creepages::Prescribed { creepage, vx } => (creepage, vx.abs()),
         Creepages::Kinematic {
@@ -579,7 +590,6 @@ fn creepages_at(
             // Lever arm from the wheelset centre to the contact point, track axes.
             let arm = [p.longitudinal, sigma * p.lateral, p.rolling_radius];
             // Ω = yaw rate about z, minus ω about the (yawed) axle direction (0, 1, 0) rotated.
-            let (sin_y, cos_y) = input.yaw.sin_cos();
             let omega_vec = [omega * sin_y, -omega * cos_y, yaw_rate];
             let cross = [
                 omega_vec[1] * arm[2] - omega_vec[2] * arm[1],
@@ -783,6 +793,8 @@ struct NonPlanar {
     kinematics: WheelsetInput,
     sigma: f64,
     at_reference: Creepage,
+    /// (sin ψ, cos ψ) of the yaw.
+    yaw_trig: (f64, f64),
 }
 
 impl NonPlanar {
@@ -808,14 +820,15 @@ impl NonPlanar {
             kinematics,
             sigma,
             at_reference,
+            yaw_trig: input.yaw.sin_cos(),
         }
     }
 
     /// The non-planar part of the creepages at strip point `p` (lever `lever` along e_y from the
-    /// reference point): the strip's creepages in its own axes minus what a flat patch would
-    /// give there, (ξ_ref − φ_ref·lever, η_ref, φ_ref).
-    fn increment(&self, p: &ContactPoint, lever: f64) -> Creepage {
-        let (here, _) = creepages_at(&self.kinematics, self.sigma, p, p.contact_angle);
+    /// reference point; `angle_trig` its contact angle's (sin, cos)): the strip's creepages in
+    /// its own axes minus what a flat patch would give there, (ξ_ref − φ_ref·lever, η_ref, φ_ref).
+    fn increment(&self, p: &ContactPoint, lever: f64, angle_trig: (f64, f64)) -> Creepage {
+        let (here, _) = creepages_with(&self.kinematics, self.sigma, p, angle_trig, self.yaw_trig);
         let there = &self.at_reference;
         Creepage {
             xi: here.xi - (there.xi - there.phi * lever),
@@ -877,7 +890,8 @@ fn strip_patch_result(
         };
         if strip.half_length > 0.0 {
             if let Some(non_planar) = &non_planar {
-                let d = non_planar.increment(&strip_point(patch, j), lever);
+                let trig = (patch.points.sin_angle[j], patch.points.cos_angle[j]);
+                let d = non_planar.increment(&strip_point(patch, j), lever, trig);
                 strip.creepage = Creepage {
                     xi: creepage.xi + d.xi,
                     eta: creepage.eta + d.eta,
@@ -908,21 +922,24 @@ fn strip_patch_result(
     // Forces: planar — all strips in the patch's axes; non-planar — each strip's in its own.
     let mut tangential = [0.0; 3];
     let mut fy_patch = 0.0;
+    let (sin_g, cos_g) = gamma.sin_cos();
     for j in 0..n {
         let (fx, fy) = solver.strip_force(j);
         if fx == 0.0 && fy == 0.0 {
             continue;
         }
-        let gamma_j = if settings.planar_patch {
-            gamma
+        let (sin_j, cos_j) = if settings.planar_patch {
+            (sin_g, cos_g)
         } else {
-            patch.points.contact_angle[j]
+            (patch.points.sin_angle[j], patch.points.cos_angle[j])
         };
-        let v = planar_tangential(side.sigma, gamma_j, fx, fy);
+        // e_y of the strip's axes (contact_axes) times fy, plus fx along x.
+        let v = [fx, fy * cos_j, -side.sigma * fy * sin_j];
         for i in 0..3 {
             tangential[i] += v[i];
         }
-        fy_patch += fy * (gamma_j - gamma).cos();
+        // cos(γ_j − γ).
+        fy_patch += fy * (cos_j * cos_g + sin_j * sin_g);
     }
     let result = PatchResult {
         fn_: summary.normal_force,
