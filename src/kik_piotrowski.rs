@@ -247,6 +247,7 @@ pub fn kernel_integral_from_origin(c: f64, big_y: f64) -> f64 {
 /// ∫ I(c, y) dy over the strip [lo, hi] (y from y0) [m²]: split at y0 with
 /// [`kernel_integral_from_origin`] if the strip contains y0 (lo ≤ 0 < hi, as
 /// [`StripGeometry::strip_at_origin`]), else product integration with midpoint remainder.
+#[cfg(test)]
 fn strip_kernel_integral(c: f64, lo: f64, hi: f64) -> f64 {
     if lo <= 0.0 && 0.0 < hi {
         kernel_integral_from_origin(c, hi) + kernel_integral_from_origin(c, -lo)
@@ -254,6 +255,118 @@ fn strip_kernel_integral(c: f64, lo: f64, hi: f64) -> f64 {
         let mid = 0.5 * (lo + hi);
         model_kernel_antiderivative(c, hi) - model_kernel_antiderivative(c, lo)
             + (hi - lo) * kernel_remainder(c, mid)
+    }
+}
+
+/// Smallest t = y/c in [`RemainderTable`]; below it the remainder is computed directly (strips
+/// whose centre lies within 1e−3 c of y0 are rare and R is ~1e−5 c there).
+const TABLE_T_MIN: f64 = 1e-3;
+/// Largest t in [`RemainderTable`] (twice [`TAIL_START`], so that the node at the tail's start
+/// is interior); beyond it directly — strips more than 64 of their half-lengths from y0 are the
+/// narrow ends of a patch, and there R = I − S cancels (both ≈ c/t; K − E ≈ πk²/4 with
+/// k² ≈ 1/t²), so the direct values carry ~1e−16 t² relative noise a table would only copy.
+const TABLE_T_MAX: f64 = 64.0;
+/// Node spacing in u = ln t: cubic interpolation in u is relatively exact to ~(Δu)⁴/40 of the
+/// tabulated functions' fourth derivatives in u (O(1) relative: power laws and t² ln t in t),
+/// ~3e−10; tested against the direct evaluation to 1e−9.
+const TABLE_DU: f64 = 0.01;
+
+/// The scale-free kernel remainder, tabulated once per model instance. I(c, y) = c Î(y/c) and
+/// S(c, y) = c Ŝ(y/c) (KP6 and the model kernel depend on y/c alone, times c), so
+/// R(c, y) = c R̂(y/c) and ∫₀^Y R dy = c² Ĝ(Y/c) with Ĝ(T) = ∫₀^T R̂ dt: one-dimensional
+/// functions. Tabulated on u = ln t, they replace an AGM per strip and the Gauss–Legendre sums
+/// of the strip at the origin (~30 AGMs) at every load-iteration step — most of the model's cost
+/// — by cubic interpolation. Built from the direct functions ([`kernel_remainder`], and
+/// [`remainder_integral`] once at t = [`TABLE_T_MIN`]), Ĝ by integrating the interpolating cubics
+/// cell by cell; outside [`TABLE_T_MIN`, `TABLE_T_MAX`] the direct functions are used.
+#[derive(Debug, Clone)]
+struct RemainderTable {
+    /// R̂ at t_k = TABLE_T_MIN e^{k Δu}.
+    remainder: Vec<f64>,
+    /// Ĝ at the same nodes.
+    integral: Vec<f64>,
+}
+
+impl RemainderTable {
+    fn new() -> Self {
+        let nodes = ((TABLE_T_MAX / TABLE_T_MIN).ln() / TABLE_DU).ceil() as usize + 1;
+        let t_of = |k: usize| TABLE_T_MIN * (TABLE_DU * k as f64).exp();
+        let remainder: Vec<f64> = (0..nodes).map(|k| kernel_remainder(1.0, t_of(k))).collect();
+        // ∫ R̂ dt = ∫ R̂(e^u) e^u du: integrate g(u) = R̂ t over each cell with the cubic through
+        // the four nearest nodes (weights (−1, 13, 13, −1)/24 inside, one-sided at the ends).
+        let g: Vec<f64> = (0..nodes).map(|k| remainder[k] * t_of(k)).collect();
+        let mut integral = Vec::with_capacity(nodes);
+        integral.push(remainder_integral(1.0, TABLE_T_MIN));
+        for k in 0..nodes - 1 {
+            let cell = if k == 0 {
+                9.0 * g[0] + 19.0 * g[1] - 5.0 * g[2] + g[3]
+            } else if k == nodes - 2 {
+                g[k - 2] - 5.0 * g[k - 1] + 19.0 * g[k] + 9.0 * g[k + 1]
+            } else {
+                -g[k - 1] + 13.0 * g[k] + 13.0 * g[k + 1] - g[k + 2]
+            };
+            integral.push(integral[k] + TABLE_DU / 24.0 * cell);
+        }
+        Self {
+            remainder,
+            integral,
+        }
+    }
+
+    /// Cubic (Lagrange) interpolation of `values` at t ∈ [TABLE_T_MIN, TABLE_T_MAX].
+    fn at(values: &[f64], t: f64) -> f64 {
+        let x = (t / TABLE_T_MIN).ln() / TABLE_DU;
+        let k = (x.floor() as usize).clamp(1, values.len() - 3);
+        let x = x - k as f64;
+        let w = [
+            -x * (x - 1.0) * (x - 2.0) / 6.0,
+            (x + 1.0) * (x - 1.0) * (x - 2.0) / 2.0,
+            -(x + 1.0) * x * (x - 2.0) / 2.0,
+            (x + 1.0) * x * (x - 1.0) / 6.0,
+        ];
+        w[0] * values[k - 1] + w[1] * values[k] + w[2] * values[k + 1] + w[3] * values[k + 2]
+    }
+
+    /// R(c, y) = c R̂(|y|/c) [m] (as [`kernel_remainder`]).
+    fn remainder(&self, c: f64, y: f64) -> f64 {
+        let t = y.abs() / c;
+        if (TABLE_T_MIN..=TABLE_T_MAX).contains(&t) {
+            c * Self::at(&self.remainder, t)
+        } else {
+            kernel_remainder(c, y)
+        }
+    }
+
+    /// J(c, Y) = ∫₀^Y I(c, y) dy for Y ≥ 0 [m²] (as [`kernel_integral_from_origin`]).
+    fn integral_from_origin(&self, c: f64, big_y: f64) -> f64 {
+        if !(c.is_finite() && c > 0.0 && big_y > 0.0) {
+            return 0.0;
+        }
+        let t = big_y / c;
+        if !(TABLE_T_MIN..=TABLE_T_MAX).contains(&t) {
+            return kernel_integral_from_origin(c, big_y);
+        }
+        let g_hat = if t <= TAIL_START {
+            Self::at(&self.integral, t)
+        } else {
+            // Beyond 32 the same two-term tail as `remainder_integral`, from the node at 32.
+            let at_tail = Self::at(&self.integral, TAIL_START);
+            at_tail
+                + TAIL_R1 * (t / TAIL_START).ln()
+                + 0.5 * TAIL_R3 * (1.0 / (TAIL_START * TAIL_START) - 1.0 / (t * t))
+        };
+        model_kernel_antiderivative(c, big_y) + c * c * g_hat
+    }
+
+    /// ∫ I(c, y) dy over the strip [lo, hi] (as [`strip_kernel_integral`]).
+    fn strip_integral(&self, c: f64, lo: f64, hi: f64) -> f64 {
+        if lo <= 0.0 && 0.0 < hi {
+            self.integral_from_origin(c, hi) + self.integral_from_origin(c, -lo)
+        } else {
+            let mid = 0.5 * (lo + hi);
+            model_kernel_antiderivative(c, hi) - model_kernel_antiderivative(c, lo)
+                + (hi - lo) * self.remainder(c, mid)
+        }
     }
 }
 
@@ -337,6 +450,8 @@ pub struct KikPiotrowski {
     epsilon: f64,
     /// Scratch: strip half-lengths x_l,i of the last solve (after KP8) [m].
     half_length: [f64; MAX_STRIPS],
+    /// D3's kernel remainder, tabulated at construction.
+    kernel: RemainderTable,
 }
 
 impl Default for KikPiotrowski {
@@ -363,6 +478,7 @@ impl KikPiotrowski {
         Self {
             epsilon,
             half_length: [0.0; MAX_STRIPS],
+            kernel: RemainderTable::new(),
         }
     }
 
@@ -444,7 +560,7 @@ impl StripModel for KikPiotrowski {
             let c = self.half_length[i];
             if c > 0.0 {
                 let s = geom.s[i];
-                d3 += strip_kernel_integral(c, s - 0.5 * ds, s + 0.5 * ds);
+                d3 += self.kernel.strip_integral(c, s - 0.5 * ds, s + 0.5 * ds);
             }
         }
         if !(d3 > 0.0 && d3.is_finite()) {
@@ -583,6 +699,34 @@ mod tests {
     }
 
     #[test]
+    fn tabulated_kernel_remainder_matches_the_direct_functions() {
+        // The table against the direct evaluation over t = y/c from 1e−4 to 1e5 (through both
+        // ends of the table): R to 1e−9 of c (R itself is O(0.1 c) at t ~ 1 and decays like
+        // 0.02 c/t; an absolute bound is what enters D3, a sum of terms of order c Δs); J and the
+        // strip integrals to 5e−9 relative — the direct J's own Gauss–Legendre error is up to
+        // 2.4e−9 (kernel_integral_from_origin_matches_reference), so the two differ by that.
+        let table = RemainderTable::new();
+        let c = 3e-3;
+        let mut t: f64 = 1e-4;
+        let (mut worst_r, mut worst_j, mut worst_strip) = (0.0_f64, 0.0_f64, 0.0_f64);
+        while t < 1e5 {
+            let y = t * c;
+            worst_r = worst_r.max((table.remainder(c, y) - kernel_remainder(c, y)).abs() / c);
+            let j = kernel_integral_from_origin(c, y);
+            worst_j = worst_j.max((table.integral_from_origin(c, y) / j - 1.0).abs());
+            for (lo, hi) in [(0.5 * y, 1.5 * y), (-0.3 * y, y)] {
+                let direct = strip_kernel_integral(c, lo, hi);
+                let tabulated = table.strip_integral(c, lo, hi);
+                worst_strip = worst_strip.max((tabulated / direct - 1.0).abs());
+            }
+            t *= 1.0379;
+        }
+        assert!(worst_r < 1e-9, "R: {worst_r:e}");
+        assert!(worst_j < 5e-9, "J: {worst_j:e}");
+        assert!(worst_strip < 5e-9, "strip: {worst_strip:e}");
+    }
+
+    #[test]
     fn kernel_integral_from_origin_matches_reference() {
         // J(c, Y) = 2c² ∫₀^{π/2} cos²θ asinh(Y/(c sin θ)) dθ; with ∫₀^{π/2} cos²θ ln sin θ dθ
         // = −(π/4) ln 2 − π/8 the log is removed and the rest, ln(Y + √(Y² + c² sin²θ)), is
@@ -590,6 +734,7 @@ mod tests {
         // Tolerance 5e−9: the 8-point rules on the remainder (measured ≤ 2.4e−9, at Y = c) and
         // the tail expansion (< 1e−9).
         let c = 3e-3;
+        let table = RemainderTable::new();
         for ratio in [0.01, 0.1, 0.5, 1.0, 2.0, 10.0, 16.0, 100.0, 1e4] {
             let big_y = ratio * c;
             let smooth = simpson(0.0, FRAC_PI_2, 400_000, |t| {
@@ -602,6 +747,16 @@ mod tests {
             assert!(
                 (j / reference - 1.0).abs() < 2e-8,
                 "Y/c = {ratio}: {j} vs {reference}"
+            );
+            // The tabulated J (what the model uses) against the same reference.
+            let tabulated = table.integral_from_origin(c, big_y);
+            eprintln!(
+                "  tabulated: J/ref − 1 = {:.2e}",
+                tabulated / reference - 1.0
+            );
+            assert!(
+                (tabulated / reference - 1.0).abs() < 2e-8,
+                "Y/c = {ratio}: tabulated {tabulated} vs {reference}"
             );
         }
         // The brief's central-strip estimate 2cΔ ln(8c/Δ), error < 0.03 % for Δ ≤ 0.1c.
