@@ -55,7 +55,13 @@
 //!   Gauss–Legendre in ln y on [c, min(Y, 32c)], and beyond 32c by its two-term expansion
 //!   R ≈ (π/2 − 4/e)c²/y + (8/(3e³) − π/16)c⁴/y³ in closed form. Relative error ≤ 2.4e−9 against
 //!   a reference quadrature for Y/c from 0.01 to 1e4 (tested), so also when a strip is much wider
-//!   than the patch is long. 32 AGM evaluations, once per solve.
+//!   than the patch is long.
+//! * **Tabulated** (speed, issue 7): R and its integral are scale-free, R(c, y) = c R̂(y/c) and
+//!   ∫₀^Y R dy = c² Ĝ(Y/c), so the solve interpolates two one-dimensional tables in ln(y/c)
+//!   built once per instance from the direct functions above (`RemainderTable`; 1e−11 from the
+//!   reference quadrature, where the direct rule is 2.4e−9) instead of an AGM per strip and ~30
+//!   for the strip at y0 at every load-iteration step; outside y/c ∈ [1e−3, 64] it evaluates
+//!   directly.
 //! * **y0 in no strip in contact** (the strip containing y0 is out of contact — e.g. δ so small
 //!   that εδ < f at its off-centre centre — or y0 lies outside the strip set): no special case;
 //!   KP4 is still imposed at y0 and every strip uses the non-singular rule above. N stays
