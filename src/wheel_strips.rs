@@ -276,7 +276,10 @@ impl StripSide {
 
     /// Solves the wheel: prescribed vertical force `target` [N] (`Some`, > 0) or prescribed
     /// lowering `dz` (`None`). `touch` is the lowering at first contact, `dz_hint` a lowering
-    /// that carries the load approximately (Hertz) or the prescribed one. Returns the lowering.
+    /// that carries the load approximately (Hertz) or the prescribed one. The strips are laid out
+    /// for `target`; the final patches are then balanced against `final_target` if given (the
+    /// load less the creep forces' vertical component: one iteration instead of balancing to
+    /// `target` and re-balancing). Returns the lowering.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
@@ -285,6 +288,7 @@ impl StripSide {
         settings: &StripSettings,
         table: &HertzShapeTable,
         target: Option<f64>,
+        final_target: Option<f64>,
         touch: f64,
         dz_hint: f64,
     ) -> f64 {
@@ -311,7 +315,7 @@ impl StripSide {
             approach *= 2.0;
         }
         // The re-striped patches are solved afresh.
-        match target {
+        match final_target.or(target) {
             Some(q) => self.iterate(q, touch, dz - touch, &params, table),
             None => {
                 self.vertical_force(dz, &params, table);

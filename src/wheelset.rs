@@ -1004,23 +1004,16 @@ fn solve_strips(
         let mut strips = side.strips.take().expect("strip buffers are present");
         dz = match target {
             Some(t) if k > 0 => strips.rebalance(&ctx.strips, table, t, touch, dz),
-            _ => {
-                let dz = strips.solve(
-                    &side.geometry,
-                    &side.candidates,
-                    &ctx.strips,
-                    table,
-                    load.or(target),
-                    touch,
-                    dz,
-                );
-                match (target, load) {
-                    (Some(t), Some(q)) if t != q => {
-                        strips.rebalance(&ctx.strips, table, t, touch, dz)
-                    }
-                    _ => dz,
-                }
-            }
+            _ => strips.solve(
+                &side.geometry,
+                &side.candidates,
+                &ctx.strips,
+                table,
+                load.or(target),
+                target,
+                touch,
+                dz,
+            ),
         };
         side.strips = Some(strips);
         evaluate_strips(side, ctx, input, dz, out)?;
