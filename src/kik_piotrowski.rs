@@ -323,13 +323,7 @@ impl RemainderTable {
     fn at(values: &[f64], t: f64) -> f64 {
         let x = (t / TABLE_T_MIN).ln() / TABLE_DU;
         let k = (x.floor() as usize).clamp(1, values.len() - 3);
-        let x = x - k as f64;
-        let w = [
-            -x * (x - 1.0) * (x - 2.0) / 6.0,
-            (x + 1.0) * (x - 1.0) * (x - 2.0) / 2.0,
-            -(x + 1.0) * x * (x - 2.0) / 2.0,
-            (x + 1.0) * x * (x - 1.0) / 6.0,
-        ];
+        let w = crate::strips::cubic_lagrange_weights(x - k as f64);
         w[0] * values[k - 1] + w[1] * values[k] + w[2] * values[k + 1] + w[3] * values[k + 2]
     }
 

@@ -421,6 +421,17 @@ pub const SHAPE_TABLE_RANGE: f64 = 16.0;
 const SHAPE_TABLE_STEP: f64 = 0.02;
 const SHAPE_TABLE_NODES: usize = (2.0 * SHAPE_TABLE_RANGE / SHAPE_TABLE_STEP) as usize + 1;
 
+/// Weights of 4-point (cubic) Lagrange interpolation on the nodes −1, 0, 1, 2 at offset `x`
+/// (x ∈ [0, 1] between nodes 0 and 1).
+pub(crate) fn cubic_lagrange_weights(x: f64) -> [f64; 4] {
+    [
+        -x * (x - 1.0) * (x - 2.0) / 6.0,
+        (x + 1.0) * (x - 1.0) * (x - 2.0) / 2.0,
+        -(x + 1.0) * x * (x - 2.0) / 2.0,
+        (x + 1.0) * x * (x - 1.0) / 6.0,
+    ]
+}
+
 /// [`HertzShape`] tabulated on a uniform grid in u = ln(A/B) with 4-point cubic (Lagrange)
 /// interpolation in each of ε_x, a/b and P. They vary like e^{cu} with |c| ≤ 1 (power laws in
 /// A/B towards line contact), whose cubic interpolation at this step is relatively exact to
@@ -499,14 +510,7 @@ impl HertzShapeTable {
         let t = (u + SHAPE_TABLE_RANGE) / SHAPE_TABLE_STEP;
         // Interval [k, k+1] with neighbours k−1 and k+2 inside the table.
         let k = (t.floor() as usize).clamp(1, SHAPE_TABLE_NODES - 3);
-        let x = t - k as f64;
-        // Lagrange weights on nodes −1, 0, 1, 2 at offset x.
-        let w = [
-            -x * (x - 1.0) * (x - 2.0) / 6.0,
-            (x + 1.0) * (x - 1.0) * (x - 2.0) / 2.0,
-            -(x + 1.0) * x * (x - 2.0) / 2.0,
-            (x + 1.0) * x * (x - 1.0) / 6.0,
-        ];
+        let w = cubic_lagrange_weights(t - k as f64);
         let mut v = [0.0; 3];
         for (j, wj) in w.iter().enumerate() {
             let node = &self.nodes[k - 1 + j];
