@@ -361,13 +361,8 @@ impl Default for StripPoints {
 struct CurvePoint<T> {
     w: f64,
     z: f64,
-    /// dz/dw there [-].
-    slope: f64,
     extra: T,
 }
-
-/// A converged projection to continue from: lateral w, in-plane coordinate s, slope dz/dw.
-type ProjectionStart = (f64, f64, f64);
 
 /// Normal gap given to in-plane coordinates where a surface has no point [m]: no approach
 /// reaches it (the load iteration stops at 5 cm), so such a strip is never in contact.
@@ -404,10 +399,7 @@ fn wheel_convexity(wheel: &Profile, radius: f64, from: f64) -> f64 {
 const PROJECTION_STEPS: usize = 8;
 
 /// Solves t(w) = (w − w0) cos γ − (z(w) − z0) sin γ = s for a curve w ↦ (z, dz/dw, extra) by
-/// Newton's method (t' = cos γ − z' sin γ) started on the tangent, w = w0 + s cos γ, or with
-/// `start` = (w', s', z'(w')), a converged point of the neighbouring strip, one Newton step from
-/// there (t(w') = s' is known: off by ~t''Δs²/2, so one more step converges where the tangent
-/// start needs two). The flag
+/// Newton's method (t' = cos γ − z' sin γ) started on the tangent, w = w0 + s cos γ. The flag
 /// is false when it does not converge: beyond a point where the curve turns steeper than the
 /// plane's normal (a rail's gauge face seen from a flange-root plane) t(w) has a maximum
 /// (t' = 0), and in-plane coordinates past it have no point of the curve; an iterate with
@@ -415,27 +407,24 @@ const PROJECTION_STEPS: usize = 8;
 fn project_on_plane<T: Copy>(
     plane: &ContactPlane,
     s: f64,
-    start: Option<ProjectionStart>,
     curve: impl Fn(f64) -> (f64, f64, T),
 ) -> (CurvePoint<T>, bool) {
     let (sin_g, cos_g) = (plane.sin_gamma, plane.cos_gamma);
-    let continued = start.and_then(|(w, s_start, slope)| {
-        let dt = cos_g - slope * sin_g;
-        (dt > 0.0).then(|| w + (s - s_start) / dt)
-    });
-    let mut w = continued.unwrap_or(plane.w0 + s * cos_g);
+    let mut w = plane.w0 + s * cos_g;
     let (z, slope, extra) = curve(w);
-    let mut point = CurvePoint { w, z, slope, extra };
+    let mut point = CurvePoint { w, z, extra };
+    let mut slope = slope;
     let mut residual = (w - plane.w0) * cos_g - (z - plane.z0) * sin_g - s;
     for _ in 0..PROJECTION_STEPS {
-        let dt = cos_g - point.slope * sin_g;
+        let dt = cos_g - slope * sin_g;
         // 1e−12 m along the plane: far below every contact dimension.
         if residual.abs() < 1e-12 || dt <= 0.0 || !dt.is_finite() {
             break;
         }
         w -= residual / dt;
-        let (z, slope, extra) = curve(w);
-        point = CurvePoint { w, z, slope, extra };
+        let (z, dz, extra) = curve(w);
+        point = CurvePoint { w, z, extra };
+        slope = dz;
         residual = (w - plane.w0) * cos_g - (z - plane.z0) * sin_g - s;
     }
     (point, residual.abs() <= PROJECTION_TOLERANCE)
@@ -464,9 +453,6 @@ struct PlaneGap {
     rail_slope: f64,
     /// The wheel's radius at its point [m].
     radius: f64,
-    /// The rail's and the wheel's points as starts for the next projection.
-    rail_start: ProjectionStart,
-    wheel_start: ProjectionStart,
 }
 
 impl WheelOnRail {
@@ -914,7 +900,7 @@ impl WheelOnRail {
         let rail = self.rail_at(w0, p);
         let mut plane = ContactPlane::new(w0, rail.z, -rail.slope.atan(), lift);
         // The tangent point itself always projects (dt/dw = 1/cos γ there).
-        let (wheel, _) = project_on_plane(&plane, 0.0, None, |w| {
+        let (wheel, _) = project_on_plane(&plane, 0.0, |w| {
             let q = self.wheel_at(w, p);
             (q.z + lift, q.slope, ())
         });
@@ -929,16 +915,13 @@ impl WheelOnRail {
     }
 
     /// Rail and wheel points at in-plane coordinate `s` and their normal gap.
-    /// `previous`: the gap at a neighbouring in-plane coordinate, whose converged points start
-    /// the projections.
-    fn gap_in_plane(&self, plane: &ContactPlane, s: f64, previous: Option<&PlaneGap>) -> PlaneGap {
+    fn gap_in_plane(&self, plane: &ContactPlane, s: f64) -> PlaneGap {
         let p = &self.pose;
-        let start = previous.filter(|g| g.found);
-        let (rail, rail_found) = project_on_plane(plane, s, start.map(|g| g.rail_start), |w| {
+        let (rail, rail_found) = project_on_plane(plane, s, |w| {
             let q = self.rail_at(w, p);
             (q.z, q.slope, (q.y_rail, q.profile_slope))
         });
-        let (wheel, wheel_found) = project_on_plane(plane, s, start.map(|g| g.wheel_start), |w| {
+        let (wheel, wheel_found) = project_on_plane(plane, s, |w| {
             let q = self.wheel_at(w, p);
             (q.z + plane.lift, q.slope, (q.x, q.radius))
         });
@@ -957,8 +940,6 @@ impl WheelOnRail {
             y_rail: rail.extra.0,
             rail_slope: rail.extra.1,
             radius: wheel.extra.1,
-            rail_start: (rail.w, s, rail.slope),
-            wheel_start: (wheel.w, s, wheel.slope),
         }
     }
 
@@ -981,14 +962,14 @@ impl WheelOnRail {
         let ds = (s_hi - s_lo) / n as f64;
         geom.n = n;
         geom.ds = ds;
-        let mut previous = self.gap_in_plane(plane, s_lo - 0.5 * ds, None);
-        let mut current = self.gap_in_plane(plane, s_lo + 0.5 * ds, Some(&previous));
+        let mut previous = self.gap_in_plane(plane, s_lo - 0.5 * ds);
+        let mut current = self.gap_in_plane(plane, s_lo + 0.5 * ds);
         // Strips whose B stencil reaches a point without surfaces take the B of the nearest
         // strip whose stencil is whole (such strips border a fold and are out of contact).
         let mut whole_stencil = [false; MAX_STRIPS];
         for (i, whole) in whole_stencil[..n].iter_mut().enumerate() {
             let s = s_lo + (i as f64 + 0.5) * ds;
-            let next = self.gap_in_plane(plane, s + ds, Some(&current));
+            let next = self.gap_in_plane(plane, s + ds);
             let slope = current.rail_slope;
             let gamma = -slope.atan();
             let radius = current.radius;
@@ -1186,16 +1167,14 @@ mod tests {
         let t_max = cos_g * cos_g / (4.0 * c * sin_g);
         for fraction in [-0.9, -0.3, 0.0, 0.3, 0.6] {
             let s = fraction * t_max;
-            let (point, found) =
-                project_on_plane(&plane, s, None, |w| (c * w * w, 2.0 * c * w, ()));
+            let (point, found) = project_on_plane(&plane, s, |w| (c * w * w, 2.0 * c * w, ()));
             assert!(found, "{fraction}");
             let t = point.w * cos_g - point.z * sin_g;
             assert!((t - s).abs() < 1e-12, "{fraction}: {t} vs {s}");
         }
         for fraction in [1.05, 1.5, 3.0] {
-            let (_, found) = project_on_plane(&plane, fraction * t_max, None, |w| {
-                (c * w * w, 2.0 * c * w, ())
-            });
+            let (_, found) =
+                project_on_plane(&plane, fraction * t_max, |w| (c * w * w, 2.0 * c * w, ()));
             assert!(!found, "{fraction}");
         }
     }

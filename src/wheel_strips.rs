@@ -137,8 +137,8 @@ const RANGE_RETRIES: usize = 4;
 /// first layout only has to find where each model's patch lies (its runs of strips in
 /// contact); the final strips cover a run plus one first-layout strip at each end, so halving
 /// the first layout widens that margin by a few per cent of the patch while sparing half of the
-/// first layout's geometry and load iteration (the strip models' largest cost after the
-/// tangential problem). Never fewer than 5 (or `strips` if smaller): a run must stay resolved.
+/// first layout's geometry and load iteration. Never fewer than 5 (or `strips` if smaller): a run
+/// must stay resolved. Runs one strip apart are one run (see `restrip`).
 fn first_layout_strips(strips: usize) -> usize {
     strips.div_ceil(2).max(strips.min(5))
 }
@@ -238,7 +238,12 @@ impl StripSide {
                     continue;
                 }
                 let last = i;
-                while i > 0 && old.sol.half_length[i - 1] > 0.0 {
+                // A run continues across a single strip out of contact: the new ranges reach one
+                // old strip beyond each run, so two runs one strip apart would get overlapping
+                // ranges — two patches over the same contact, whose forces add up (a coarse first
+                // layout can put one strip centre in a notch of a patch).
+                let in_contact = |j: usize| old.sol.half_length[j] > 0.0;
+                while i > 0 && (in_contact(i - 1) || (i > 1 && in_contact(i - 2))) {
                     i -= 1;
                 }
                 let first = i;
