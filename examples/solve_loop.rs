@@ -1,0 +1,74 @@
+//! A loop of `Wheelset::solve` for instruction counts (docs/performance.md): the benchmark's
+//! central case (built-in S1002/UIC60, 78.5 kN per wheel, kinematic creepages at 30 m/s with
+//! 0.1 % longitudinal creepage) at the default settings, steady or moving (y = 3 mm sin 2πt at
+//! 1 ms steps). Wall-clock time on a shared machine varies by tens of per cent from run to run;
+//! the instruction count of a fixed loop does not:
+//!
+//! ```sh
+//! cargo build --release --example solve_loop
+//! valgrind --tool=callgrind --callgrind-out-file=/dev/null target/release/examples/solve_loop analyn 300
+//! ```
+//!
+//! Instructions per solve = (count at 300 solves − count at 100) / 200. Arguments: the normal
+//! model (`hertz`, `linder`, `kik-piotrowski`, `stripes-b`, `stripes-ab`, `analyn`), the number
+//! of solves, and `moving` for the moving pose.
+
+use railcontact::point_contact::Material;
+use railcontact::profile::{Profile, ProfileKind};
+use railcontact::strips::NormalModel;
+use railcontact::track::TrackSetup;
+use railcontact::wheelset::{
+    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
+};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let usage = "usage: solve_loop MODEL SOLVES [moving]";
+    let model = args
+        .get(1)
+        .and_then(|name| NormalModel::from_name(name))
+        .expect(usage);
+    let solves: usize = args.get(2).and_then(|n| n.parse().ok()).expect(usage);
+    let moving = args.get(3).is_some_and(|a| a == "moving");
+    let wheel = Profile::load("S1002", ProfileKind::Wheel, 0.0).expect("built-in S1002");
+    let rail = Profile::load("UIC60", ProfileKind::Rail, 0.0).expect("built-in UIC60");
+    let material = Material {
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.28,
+        friction: 0.3,
+    };
+    let mut settings = WheelsetSettings::new(TrackSetup::default(), material);
+    settings.normal_model = model;
+    let mut wheelset = Wheelset::new(&wheel, &rail, settings).expect("wheelset");
+    let input = |k: usize| WheelsetInput {
+        y: if moving {
+            3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin()
+        } else {
+            0.0
+        },
+        yaw: 0.0,
+        roll: 0.0,
+        vertical: Vertical::Loads {
+            left: 78_500.0,
+            right: 78_500.0,
+        },
+        creepages: Creepages::Kinematic {
+            vx: 30.0,
+            vy: 0.0,
+            yaw_rate: 0.0,
+            omega: 30.0 / 0.46 * (1.0 + 1e-3),
+        },
+    };
+    let mut out = WheelsetResult::default();
+    let start = std::time::Instant::now();
+    for k in 0..solves {
+        wheelset
+            .solve(std::hint::black_box(&input(k)), &mut out)
+            .expect("solve");
+    }
+    println!(
+        "{}: {solves} solves, {:.2} µs each (wall clock, indicative only)",
+        model.name(),
+        start.elapsed().as_secs_f64() / solves as f64 * 1e6
+    );
+}
