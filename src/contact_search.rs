@@ -380,8 +380,10 @@ const REFINE_STEPS: usize = 40;
 const PROJECTION_TOLERANCE: f64 = 1e-9;
 
 /// max of z'² + r z'' with r = `radius` + z (the radius at the point) [-] over the wheel profile
-/// from the flange tip `from` to the field side, sampled every 10 µm (the spline's z'' is
-/// linear between knots spaced ≥ 10 µm). The flange's back (z' → ∞ on its vertical face) is
+/// from the flange tip `from` to the field side, sampled every 10 µm. Where the spline's knots
+/// cluster closer than that (1 µm near the S1002 flange tip) its z'' can spike between samples,
+/// so this is a sampled maximum: `wheel_at` keeps its Newton inside the lead bound
+/// ([`wheel_lead_bound`]) for that reason. The flange's back (z' → ∞ on its vertical face) is
 /// left out: contact there is refused as flange climb, and a yawed wheel's lowest point cannot
 /// lie on it (its lead r z' tan ψ would exceed r/2).
 fn wheel_convexity(wheel: &Profile, radius: f64, from: f64) -> f64 {
@@ -844,8 +846,9 @@ impl WheelOnRail {
     /// it is for a Hertz ellipse). On a symmetric (Hertzian) gap it is the deepest point for
     /// any ε; on a near-conformal one (Manchester, right wheel at 0.5 mm: rigid region
     /// 17 mm wide, 25 µm deep) it lands within 1 mm of CONTACT's reference point, where the
-    /// rigid region's (δ − f)^{3/2} centroid was 2 mm off and the deepest point 2.8 mm. Regions are written field side first;
-    /// returns how many there are (at most `out.len()`; if more exist, the deepest are kept).
+    /// rigid region's (δ − f)^{3/2} centroid was 2 mm off and the deepest point 2.8 mm. Regions
+    /// are written field side first; returns how many there are (at most `out.len()`; if more
+    /// exist, the deepest are kept).
     pub fn regions(&self, dz: f64, out: &mut [Region]) -> usize {
         let s = &self.samples;
         let mut count = 0usize;

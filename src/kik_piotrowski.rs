@@ -255,12 +255,24 @@ pub fn kernel_integral_from_origin(c: f64, big_y: f64) -> f64 {
 /// [`StripGeometry::strip_at_origin`]), else product integration with midpoint remainder.
 #[cfg(test)]
 fn strip_kernel_integral(c: f64, lo: f64, hi: f64) -> f64 {
+    split_strip_integral(c, lo, hi, kernel_integral_from_origin, kernel_remainder)
+}
+
+/// The rule of [`strip_kernel_integral`] with J(c, Y) = `from_origin` and R(c, y) =
+/// `remainder` (the direct functions, or [`RemainderTable`]'s).
+fn split_strip_integral(
+    c: f64,
+    lo: f64,
+    hi: f64,
+    from_origin: impl Fn(f64, f64) -> f64,
+    remainder: impl Fn(f64, f64) -> f64,
+) -> f64 {
     if lo <= 0.0 && 0.0 < hi {
-        kernel_integral_from_origin(c, hi) + kernel_integral_from_origin(c, -lo)
+        from_origin(c, hi) + from_origin(c, -lo)
     } else {
         let mid = 0.5 * (lo + hi);
         model_kernel_antiderivative(c, hi) - model_kernel_antiderivative(c, lo)
-            + (hi - lo) * kernel_remainder(c, mid)
+            + (hi - lo) * remainder(c, mid)
     }
 }
 
@@ -360,13 +372,13 @@ impl RemainderTable {
 
     /// ∫ I(c, y) dy over the strip [lo, hi] (as [`strip_kernel_integral`]).
     fn strip_integral(&self, c: f64, lo: f64, hi: f64) -> f64 {
-        if lo <= 0.0 && 0.0 < hi {
-            self.integral_from_origin(c, hi) + self.integral_from_origin(c, -lo)
-        } else {
-            let mid = 0.5 * (lo + hi);
-            model_kernel_antiderivative(c, hi) - model_kernel_antiderivative(c, lo)
-                + (hi - lo) * self.remainder(c, mid)
-        }
+        split_strip_integral(
+            c,
+            lo,
+            hi,
+            |c, y| self.integral_from_origin(c, y),
+            |c, y| self.remainder(c, y),
+        )
     }
 }
 

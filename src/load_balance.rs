@@ -48,7 +48,7 @@ pub fn balance<E>(
     iterations: usize,
     residual: impl FnMut(f64) -> Result<f64, E>,
 ) -> Result<Balanced, E> {
-    balance_in(touch, first_approach, load, iterations, 1.0, residual)
+    balance_in(touch, first_approach, load, iterations, false, residual)
 }
 
 /// [`balance`] for a force that grows like a Hertz patch's, F ∝ δ^{3/2} (the multi-Hertzian
@@ -62,16 +62,16 @@ pub fn balance_hertzian<E>(
     iterations: usize,
     residual: impl FnMut(f64) -> Result<f64, E>,
 ) -> Result<Balanced, E> {
-    balance_in(touch, first_approach, load, iterations, 1.5, residual)
+    balance_in(touch, first_approach, load, iterations, true, residual)
 }
 
-/// [`balance`] with the regula falsi in u = δ^`exponent` (1 or 1.5).
+/// [`balance`] with the regula falsi in dz, or in u = δ^{3/2} if `hertzian`.
 fn balance_in<E>(
     touch: f64,
     first_approach: f64,
     load: f64,
     iterations: usize,
-    exponent: f64,
+    hertzian: bool,
     mut residual: impl FnMut(f64) -> Result<f64, E>,
 ) -> Result<Balanced, E> {
     let (mut lo, mut f_lo) = (touch, -load);
@@ -126,7 +126,6 @@ fn balance_in<E>(
     }
     let mut kept = 0i8;
     let mut last = hi;
-    let hertzian = exponent != 1.0;
     let u_of = |dz: f64| {
         if hertzian {
             let d = (dz - touch).max(0.0);
@@ -189,8 +188,8 @@ mod tests {
         let (k, touch, load): (f64, f64, f64) = (1e10, -2e-4, 8e4);
         let exact = touch + (load / k).powf(2.0 / 3.0);
         let mut evaluations = [0usize; 2];
-        for (exponent, calls) in [1.0, 1.5].into_iter().zip(&mut evaluations) {
-            let b = balance_in(touch, 1e-5, load, 60, exponent, |dz| {
+        for (hertzian, calls) in [false, true].into_iter().zip(&mut evaluations) {
+            let b = balance_in(touch, 1e-5, load, 60, hertzian, |dz| {
                 *calls += 1;
                 Ok::<_, ()>(k * (dz - touch).max(0.0).powf(1.5) - load)
             })

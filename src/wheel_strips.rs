@@ -267,7 +267,7 @@ impl StripSide {
                 // to the old origin gives the lift).
                 let origin = deepest_candidate(candidates, w_min, w_max).unwrap_or((
                     old.points.lateral[origin],
-                    old.plane.lift + old.geom.f[origin] / old.plane.gamma.cos(),
+                    old.plane.lift + old.geom.f[origin] / old.plane.cos_gamma,
                 ));
                 let ends = (w_lo, w_hi);
                 self.spare[count].set_up(geometry, origin, ends, settings.strips, settings, table);

@@ -701,13 +701,22 @@ fn add_patch(
 /// Unit vectors e_y, e_z of the contact axes at contact angle `gamma` on side `sigma` (track
 /// axes; e_x = (1, 0, 0)).
 fn contact_axes(sigma: f64, gamma: f64) -> ([f64; 3], [f64; 3]) {
-    let (sin_g, cos_g) = gamma.sin_cos();
+    contact_axes_of(sigma, gamma.sin_cos())
+}
+
+/// [`contact_axes`] from the angle's (sin γ, cos γ).
+fn contact_axes_of(sigma: f64, (sin_g, cos_g): (f64, f64)) -> ([f64; 3], [f64; 3]) {
     ([0.0, cos_g, -sigma * sin_g], [0.0, sigma * sin_g, cos_g])
 }
 
 /// Track-axes vector of a tangential force (fx, fy) in the contact axes at angle `gamma`.
 fn planar_tangential(sigma: f64, gamma: f64, fx: f64, fy: f64) -> [f64; 3] {
-    let (e_y, _) = contact_axes(sigma, gamma);
+    tangential_in_axes(sigma, gamma.sin_cos(), fx, fy)
+}
+
+/// [`planar_tangential`] from the angle's (sin γ, cos γ).
+fn tangential_in_axes(sigma: f64, angle_trig: (f64, f64), fx: f64, fy: f64) -> [f64; 3] {
+    let (e_y, _) = contact_axes_of(sigma, angle_trig);
     // e_x = (1, 0, 0) and e_y has no x component.
     [fx, fy * e_y[1], fy * e_y[2]]
 }
@@ -933,8 +942,7 @@ fn strip_patch_result(
         } else {
             (patch.points.sin_angle[j], patch.points.cos_angle[j])
         };
-        // e_y of the strip's axes (contact_axes) times fy, plus fx along x.
-        let v = [fx, fy * cos_j, -side.sigma * fy * sin_j];
+        let v = tangential_in_axes(side.sigma, (sin_j, cos_j), fx, fy);
         for i in 0..3 {
             tangential[i] += v[i];
         }
