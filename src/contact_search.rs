@@ -25,6 +25,7 @@
 //! Known limits: the gap is measured vertically in the wheelset frame (δ_normal = δ_vertical·cos γ);
 //! B ignores the small change of lateral curvature by yaw; straight track.
 
+use crate::profile::bounds::HeightBounds;
 use crate::profile::Profile;
 use crate::strips::{StripGeometry, MAX_STRIPS};
 use crate::track::{GeometryError, MountedRail, TrackSetup};
@@ -62,6 +63,28 @@ const MULTI_START_SAMPLES: usize = 64;
 
 /// Step below which that search has converged [m]: the gap error is second order in it.
 const WHEEL_NEWTON_TOLERANCE: f64 = 1e-9;
+
+/// Fine samples per coarse interval of the scan. The search samples every `COARSE_STRIDE`-th
+/// point first and fills in an interval's fine samples only where a lower bound of the gap over
+/// it (from the profiles' height bounds) lies below the level asked for (see
+/// [`WheelOnRail::search`]). 4 (2 mm at the default step): the bound is loose by the surfaces'
+/// slopes times the interval, ~0.1 mm on a tread at 2 mm, so wider intervals fill nearly as
+/// many samples near the contact while saving few more away from it.
+const COARSE_STRIDE: usize = 8;
+
+/// Depth above the deepest coarse sample to which a search fills the fine samples at once [m]:
+/// every local minimum below it becomes a contact candidate. 0.5 mm: above five times the
+/// approach of a 100 kN wheel load on a tread (~0.1 mm), so that every region a load iteration
+/// asks for has its candidates; regions asked for deeper are filled then (exact samples), and
+/// a minimum found only then is not refined (the region's deepest sample stands in).
+const INITIAL_FILL_DEPTH: f64 = 1e-5;
+
+/// Height-bound bins per scan step (see [`HeightBounds`]): half a step, so that an interval's
+/// bound is widened by at most a quarter of its width at each end.
+const BOUND_BINS_PER_STEP: f64 = 2.0;
+
+/// Margin subtracted from the gap's lower bound against rounding [m].
+const BOUND_ROUNDING: f64 = 1e-12;
 
 /// Default floor of the relative lateral curvature B [1/m] (CONTACT: 1e−4 1/mm).
 pub const DEFAULT_B_MIN: f64 = 0.1;
@@ -275,13 +298,45 @@ pub struct WheelOnRail {
     /// max over the same part of r |z'| [m]: the lowest point of a wheel yawed by ψ has its lead
     /// d = −r z' tan ψ (q'(X) = 0 in `wheel_at`), so |d| ≤ this × |tan ψ|.
     wheel_lead_bound: f64,
+    /// Height bounds of the mounted rail and of the wheel (`gap_lower_bound`), and the mounted
+    /// rail's smallest and largest height [m].
+    rail_bounds: HeightBounds,
+    wheel_bounds: HeightBounds,
+    rail_heights: (f64, f64),
+    /// The fine samples of the last search; those of unfilled coarse intervals are [`UNFILLED`].
     samples: Vec<GapSample>,
+    /// The contact candidates of the last search (see [`WheelOnRail::candidates`]).
+    candidates: ContactCandidates,
+    /// The coarse intervals of the last search.
+    coarse: Vec<CoarseInterval>,
+    /// Every sample of the last search with a gap below this is computed [m].
+    filled_level: f64,
     /// Lateral coordinate of the first sample and the sample spacing of the last search [m].
     scan_lo: f64,
     scan_dw: f64,
     /// The pose of the last search.
     pose: Prepared,
 }
+
+/// A coarse interval of the scan: fine samples `first..=last` (the ends always computed).
+#[derive(Debug, Clone, Copy)]
+struct CoarseInterval {
+    first: usize,
+    last: usize,
+    /// Lower bound of the gap over the interval [m].
+    lower: f64,
+    /// Whether its interior samples are computed.
+    filled: bool,
+}
+
+/// A fine sample not computed: its gap lies above the search's filled level.
+const UNFILLED: GapSample = GapSample {
+    gap: f64::INFINITY,
+    slope: 0.0,
+    x: 0.0,
+    y_rail: 0.0,
+    y_wheel: 0.0,
+};
 
 /// The contact plane of a patch, in the wheelset frame of one side (lateral w towards the field
 /// side, vertical z downwards from the axle): its origin is the rail point under the patch's
@@ -509,6 +564,10 @@ impl WheelOnRail {
         let wheel_lead_bound = wheel_lead_bound(&wheel, setup.wheel_radius, flange_tip);
         let (r0, r1) = rail.profile().y_range();
         let capacity = ((r1 - r0) / scan_step).ceil() as usize + 3;
+        let bin = scan_step / BOUND_BINS_PER_STEP;
+        let rail_bounds = HeightBounds::new(rail.profile(), bin);
+        let wheel_bounds = HeightBounds::new(&wheel, bin);
+        let rail_heights = rail_bounds.overall();
         Ok(Self {
             rail,
             wheel,
@@ -518,7 +577,13 @@ impl WheelOnRail {
             flange_tip,
             wheel_convexity,
             wheel_lead_bound,
+            rail_bounds,
+            wheel_bounds,
+            rail_heights,
             samples: Vec::with_capacity(capacity),
+            candidates: ContactCandidates::default(),
+            coarse: Vec::with_capacity(capacity / COARSE_STRIDE + 2),
+            filled_level: f64::NEG_INFINITY,
             scan_lo: 0.0,
             scan_dw: scan_step,
             pose: Prepared::default(),
@@ -613,11 +678,7 @@ impl WheelOnRail {
         // curvature spikes where its knots cluster (1 µm apart near the flange tip) can make q
         // locally convex, and bisecting the all-yaw bracket ±r0/2 from there once jumped 115 mm
         // to another stationary point (a 14 mm gap error at one lateral of a soak pose).
-        let lead = if p.single_lowest_point {
-            (1.5 * self.wheel_lead_bound * (p.sin_yaw / p.cos_yaw).abs()).min(0.5 * r0)
-        } else {
-            0.5 * r0
-        };
+        let lead = self.lead_bracket(p);
         let (mut lo, mut hi) = (x_of_d(-lead), x_of_d(lead));
         let mut x = -w * p.sin_yaw / p.cos_yaw;
         if !p.single_lowest_point {
@@ -685,6 +746,94 @@ impl WheelOnRail {
             x,
             y_wheel: l - offset,
             radius: r,
+        }
+    }
+
+    /// Half-width of the bracket of the yawed wheel's lowest point in d (distance from the axle
+    /// plane) [m] (`wheel_at`).
+    fn lead_bracket(&self, p: &Prepared) -> f64 {
+        let half_radius = 0.5 * self.setup.wheel_radius;
+        if p.single_lowest_point {
+            (1.5 * self.wheel_lead_bound * (p.sin_yaw / p.cos_yaw).abs()).min(half_radius)
+        } else {
+            half_radius
+        }
+    }
+
+    /// A lower bound of the gap over the laterals [wa, wb] (wa < wb) at pose `p` [m]: the rail's
+    /// lowest possible height there less the wheel's largest possible radius.
+    ///
+    /// Rail: `rail_at` returns a point of the rail rotated by the roll, at a rail coordinate
+    /// y_r = (w − (z_r − z_c) sin θ)/cos θ + shift for some height z_r of the rail (its fixed
+    /// point; y_r = w + shift without roll), so y_r lies in the range of that expression over
+    /// the rail's heights; over it z = (z_r − z_c) cos θ − (y_r + origin − lateral) sin θ is at
+    /// least its value at the lowest height and the extreme y_r. Wheel: the lowest point at w has
+    /// z = √(r(l)² − d²) ≤ r(l) with axial coordinate l = w/cos ψ − d tan ψ and |d| within the
+    /// lead bracket of `wheel_at`.
+    fn gap_lower_bound(&self, wa: f64, wb: f64, p: &Prepared) -> f64 {
+        let r0 = self.setup.wheel_radius;
+        let z_centre = -r0;
+        let origin = self.rail.origin_lateral();
+        let shift = p.lateral - origin;
+        let (y_lo, y_hi) = if p.sin_roll == 0.0 {
+            (wa + shift, wb + shift)
+        } else {
+            let (h_lo, h_hi) = self.rail_heights;
+            let (t_a, t_b) = (
+                (h_lo - z_centre) * p.sin_roll,
+                (h_hi - z_centre) * p.sin_roll,
+            );
+            let (t_min, t_max) = (t_a.min(t_b), t_a.max(t_b));
+            // Also the fixed point's start w + shift.
+            (
+                ((wa - t_max) / p.cos_roll + shift).min(wa + shift),
+                ((wb - t_min) / p.cos_roll + shift).max(wb + shift),
+            )
+        };
+        let rail_lowest = self.rail_bounds.lower(y_lo, y_hi);
+        let rail_z = (rail_lowest - z_centre) * p.cos_roll
+            - (origin - p.lateral) * p.sin_roll
+            - (y_lo * p.sin_roll).max(y_hi * p.sin_roll);
+        let offset = self.setup.taping_line_offset();
+        let (l_lo, l_hi) = if p.sin_yaw == 0.0 {
+            (wa, wb)
+        } else {
+            let spread = self.lead_bracket(p) * (p.sin_yaw / p.cos_yaw).abs();
+            (wa / p.cos_yaw - spread, wb / p.cos_yaw + spread)
+        };
+        let wheel_highest = self.wheel_bounds.upper(l_lo - offset, l_hi - offset);
+        rail_z - (r0 + wheel_highest) - BOUND_ROUNDING
+    }
+
+    /// Computes the fine samples of every coarse interval whose gap can lie below `level` [m].
+    fn fill_to(&mut self, level: f64) {
+        if level <= self.filled_level {
+            return;
+        }
+        let p = self.pose;
+        let (lo, step) = (self.scan_lo, self.scan_dw);
+        let mut samples = std::mem::take(&mut self.samples);
+        let mut coarse = std::mem::take(&mut self.coarse);
+        let mut filled_any = false;
+        for c in coarse.iter_mut().filter(|c| !c.filled && c.lower < level) {
+            filled_any = true;
+            for (i, s) in samples
+                .iter_mut()
+                .enumerate()
+                .take(c.last)
+                .skip(c.first + 1)
+            {
+                *s = self.sample(lo + step * i as f64, &p);
+            }
+            c.filled = true;
+        }
+        self.samples = samples;
+        self.coarse = coarse;
+        let searched = self.filled_level > f64::NEG_INFINITY;
+        self.filled_level = level;
+        // New minima may lie below the new level (the search itself finds them once).
+        if filled_any && searched {
+            self.find_candidates();
         }
     }
 
@@ -849,7 +998,8 @@ impl WheelOnRail {
     /// rigid region's (δ − f)^{3/2} centroid was 2 mm off and the deepest point 2.8 mm. Regions
     /// are written field side first; returns how many there are (at most `out.len()`; if more
     /// exist, the deepest are kept).
-    pub fn regions(&self, dz: f64, out: &mut [Region]) -> usize {
+    pub fn regions(&mut self, dz: f64, out: &mut [Region]) -> usize {
+        self.fill_to(dz);
         let s = &self.samples;
         let mut count = 0usize;
         let mut i = s.len();
@@ -1047,13 +1197,17 @@ impl WheelOnRail {
         }
     }
 
-    /// Finds the contact candidates at `pose`, ordered from the field side to the gauge side.
-    pub fn search(
-        &mut self,
-        pose: &SidePose,
-        out: &mut ContactCandidates,
-    ) -> Result<(), SearchError> {
-        out.clear();
+    /// Searches the contact at `pose`: samples the gap, finds its deepest point and the contact
+    /// candidates ([`WheelOnRail::candidates`]).
+    ///
+    /// The gap is sampled every `scan_step` over the overlap of the profiles, but lazily: every
+    /// [`COARSE_STRIDE`]-th sample first, then the samples of the coarse intervals whose gap
+    /// can lie (by `gap_lower_bound`) within [`INITIAL_FILL_DEPTH`] of the deepest coarse
+    /// sample; [`WheelOnRail::regions`] fills further intervals when asked for a deeper level.
+    /// Every sample with a gap below the filled level is the one the full scan would compute,
+    /// and so are the candidates below it (the local minima; see `find_candidates`).
+    pub fn search(&mut self, pose: &SidePose) -> Result<(), SearchError> {
+        self.candidates.clear();
         let p = self.prepare(pose);
         self.pose = p;
         // `+ 0.0` turns −0 (a mirrored zero shift) into 0 for messages.
@@ -1064,49 +1218,91 @@ impl WheelOnRail {
         self.scan_lo = lo;
         self.scan_dw = step;
         let mut samples = std::mem::take(&mut self.samples);
+        let mut coarse = std::mem::take(&mut self.coarse);
         samples.clear();
-        samples.extend((0..=n).map(|i| self.sample(lo + step * i as f64, &p)));
+        samples.resize(n + 1, UNFILLED);
+        coarse.clear();
+        samples[0] = self.sample(lo, &p);
+        let mut coarse_deepest = samples[0].gap;
+        let mut first = 0;
+        while first < n {
+            let last = (first + COARSE_STRIDE).min(n);
+            let (wa, wb) = (lo + step * first as f64, lo + step * last as f64);
+            samples[last] = self.sample(wb, &p);
+            coarse_deepest = coarse_deepest.min(samples[last].gap);
+            let lower = self
+                .gap_lower_bound(wa, wb, &p)
+                .min(samples[first].gap)
+                .min(samples[last].gap);
+            coarse.push(CoarseInterval {
+                first,
+                last,
+                lower,
+                filled: last - first <= 1,
+            });
+            first = last;
+        }
+        self.samples = samples;
+        self.coarse = coarse;
+        self.filled_level = f64::NEG_INFINITY;
+        // Every sample below the deepest coarse one is computed: the deepest sample is exact.
+        self.fill_to(coarse_deepest + INITIAL_FILL_DEPTH);
 
         // Deepest sample overall: at a profile end means no contact inside the profiles.
-        let deepest = samples
+        let s = &self.samples;
+        let deepest = s
             .iter()
             .enumerate()
             .min_by(|a, b| a.1.gap.total_cmp(&b.1.gap))
             .map_or(0, |(i, _)| i);
         if deepest == 0 || deepest == n {
-            let y_rail = samples[deepest].y_rail;
-            self.samples = samples;
+            let y_rail = s[deepest].y_rail;
             return Err(SearchError::AtProfileEnd { lateral, y_rail });
         }
         let (wheel_lo, wheel_hi) = self.wheel.y_range();
-        let y_wheel = samples[deepest].y_wheel;
+        let y_wheel = s[deepest].y_wheel;
         if !(wheel_lo..=wheel_hi).contains(&y_wheel) {
-            self.samples = samples;
             return Err(SearchError::OutsideWheel { lateral, y_wheel });
         }
         if y_wheel < self.flange_tip + FLANGE_TIP_MARGIN {
-            self.samples = samples;
             return Err(SearchError::FlangeClimb { lateral, y_wheel });
         }
+        self.find_candidates();
+        Ok(())
+    }
 
+    /// The contact candidates of the last search, ordered from the field side to the gauge
+    /// side: the refined local minima of the gap below the filled level (at least the deepest
+    /// point; [`WheelOnRail::regions`] adds those of the deeper levels it is asked for).
+    pub fn candidates(&self) -> &ContactCandidates {
+        &self.candidates
+    }
+
+    /// The refined local minima of the samples below the filled level (see `candidates`).
+    fn find_candidates(&mut self) {
+        let s = std::mem::take(&mut self.samples);
+        let n = s.len() - 1;
+        let (lo, step, level, p) = (self.scan_lo, self.scan_dw, self.filled_level, self.pose);
         // Interior local minima, scanned from the gauge side (small w) to the field side.
         // Minima separated by a ridge less than MIN_PROMINENCE above the shallower one are
         // merged, and so is any minimum beyond MAX_CANDIDATES into the last kept one (keeping the
-        // deeper).
+        // deeper). Only minima below the filled level less MIN_PROMINENCE: their neighbours are
+        // computed, and a ridge through an unfilled interval (above the level) separates them
+        // as the full scan's would.
         let mut found = [0usize; MAX_CANDIDATES];
         let mut count = 0usize;
         let mut ridge = f64::NEG_INFINITY;
         for i in 1..n {
-            let g = samples[i].gap;
+            let g = s[i].gap;
             ridge = ridge.max(g);
-            if !(g <= samples[i - 1].gap && g < samples[i + 1].gap) {
+            if !(g < level - MIN_PROMINENCE && g <= s[i - 1].gap && g < s[i + 1].gap) {
                 continue;
             }
             if count > 0 {
                 let prev = found[count - 1];
-                let separate = ridge - samples[prev].gap.max(g) >= MIN_PROMINENCE;
+                let separate = ridge - s[prev].gap.max(g) >= MIN_PROMINENCE;
                 if !separate || count == MAX_CANDIDATES {
-                    if g < samples[prev].gap {
+                    if g < s[prev].gap {
                         found[count - 1] = i;
                     }
                     ridge = g;
@@ -1118,14 +1314,15 @@ impl WheelOnRail {
             ridge = g;
         }
         // Refine and describe, field side first (largest w first).
+        let mut candidates = ContactCandidates::default();
         for &i in found[..count].iter().rev() {
             let a = lo + step * (i - 1) as f64;
             let b = lo + step * (i + 1) as f64;
-            let (w, s) = self.refine((a, samples[i - 1]), (b, samples[i + 1]), samples[i], &p);
-            out.push(self.describe(w, &s));
+            let (w, refined) = self.refine((a, s[i - 1]), (b, s[i + 1]), s[i], &p);
+            candidates.push(self.describe(w, &refined));
         }
-        self.samples = samples;
-        Ok(())
+        self.candidates = candidates;
+        self.samples = s;
     }
 }
 
@@ -1269,14 +1466,22 @@ mod tests {
         // grows with the steepness), and any strip that still has no point would get
         // UNREACHED_GAP. Either way no strip of the range has a spurious negative gap.
         let mut g = s1002_on_uic60();
-        let mut candidates = ContactCandidates::default();
         let pose = SidePose {
             lateral: 0.005_764_834_807_364_837,
             yaw: 0.003_680_300_033_540_733_6,
             roll: -0.001_771_984_582_068_964_5,
         };
-        g.search(&pose, &mut candidates).unwrap();
-        let root = candidates
+        g.search(&pose).unwrap();
+        // The regions 1 mm below first contact: every candidate up there is found.
+        let touch = g
+            .candidates()
+            .as_slice()
+            .iter()
+            .map(|c| c.gap)
+            .fold(1.0, f64::min);
+        g.regions(touch + 1e-3, &mut [Region::default(); 4]);
+        let root = g
+            .candidates()
             .as_slice()
             .iter()
             .find(|c| (0.45..0.55).contains(&c.contact_angle))

@@ -188,8 +188,7 @@ impl StripSide {
     /// Step 1: one patch per interpenetration region at lowering `dz_range`.
     fn build_from_regions(
         &mut self,
-        geometry: &WheelOnRail,
-        candidates: &ContactCandidates,
+        geometry: &mut WheelOnRail,
         dz_range: f64,
         settings: &StripSettings,
         table: &HertzShapeTable,
@@ -201,10 +200,11 @@ impl StripSide {
             let w_first = geometry.lateral_at(region.first as f64);
             let w_last = geometry.lateral_at(region.last as f64);
             // The deepest candidate inside the region is its first-contact point.
-            let origin = deepest_candidate(candidates, w_first, w_last).unwrap_or_else(|| {
-                let p = geometry.point_at(region.deepest as f64);
-                (p.lateral, p.gap)
-            });
+            let origin =
+                deepest_candidate(geometry.candidates(), w_first, w_last).unwrap_or_else(|| {
+                    let p = geometry.point_at(region.deepest as f64);
+                    (p.lateral, p.gap)
+                });
             // Strips over the region and one sample beyond each end.
             let ends = (
                 geometry.lateral_at(region.first as f64 - 1.0),
@@ -221,7 +221,6 @@ impl StripSide {
     fn restrip(
         &mut self,
         geometry: &WheelOnRail,
-        candidates: &ContactCandidates,
         settings: &StripSettings,
         table: &HertzShapeTable,
     ) -> bool {
@@ -265,7 +264,7 @@ impl StripSide {
                     .unwrap_or(first);
                 // The candidate inside the run, else the run's lowest strip (its gap relative
                 // to the old origin gives the lift).
-                let origin = deepest_candidate(candidates, w_min, w_max).unwrap_or((
+                let origin = deepest_candidate(geometry.candidates(), w_min, w_max).unwrap_or((
                     old.points.lateral[origin],
                     old.plane.lift + old.geom.f[origin] / old.plane.cos_gamma,
                 ));
@@ -288,8 +287,7 @@ impl StripSide {
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
-        geometry: &WheelOnRail,
-        candidates: &ContactCandidates,
+        geometry: &mut WheelOnRail,
         settings: &StripSettings,
         table: &HertzShapeTable,
         target: Option<f64>,
@@ -305,7 +303,7 @@ impl StripSide {
                 Some(_) => touch + RANGE_FACTOR * approach,
                 None => dz_hint,
             };
-            self.build_from_regions(geometry, candidates, dz_range, settings, table);
+            self.build_from_regions(geometry, dz_range, settings, table);
             dz = match target {
                 Some(q) => self.iterate(q, touch, approach, &params, table),
                 None => {
@@ -313,7 +311,7 @@ impl StripSide {
                     dz_hint
                 }
             };
-            let contained = self.restrip(geometry, candidates, settings, table);
+            let contained = self.restrip(geometry, settings, table);
             if contained || target.is_none() {
                 break;
             }

@@ -25,9 +25,7 @@
 //! independently at the given roll (as CONTACT does with per-wheel prescribed loads); straight
 //! track; the wheelset's angular velocity has no roll-rate term.
 
-use crate::contact_search::{
-    ContactCandidates, ContactPoint, Region, SearchError, SidePose, WheelOnRail,
-};
+use crate::contact_search::{ContactPoint, Region, SearchError, SidePose, WheelOnRail};
 use crate::error::InputError;
 use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use crate::hertz::{contact_modulus, shear_modulus};
@@ -277,7 +275,6 @@ struct Side {
     /// +1 right, −1 left.
     sigma: f64,
     geometry: WheelOnRail,
-    candidates: ContactCandidates,
     regions: [Region; MAX_PATCHES],
     fastsim: [Fastsim; MAX_PATCHES],
     /// Strip patches of the non-elliptic models (`None` for Hertz).
@@ -371,7 +368,6 @@ impl Wheelset {
                     settings.scan_step,
                     settings.b_min,
                 )?,
-                candidates: ContactCandidates::default(),
                 regions: [Region::default(); MAX_PATCHES],
                 fastsim: [
                     Fastsim::new(settings.fastsim)?,
@@ -1013,8 +1009,7 @@ fn solve_strips(
         dz = match target {
             Some(t) if k > 0 => strips.rebalance(&ctx.strips, table, t, touch, dz),
             _ => strips.solve(
-                &side.geometry,
-                &side.candidates,
+                &mut side.geometry,
                 &ctx.strips,
                 table,
                 load.or(target),
@@ -1077,13 +1072,14 @@ fn solve_side(
         roll: s * input.roll,
     };
     side.geometry
-        .search(&pose, &mut side.candidates)
+        .search(&pose)
         .map_err(|reason| WheelsetError::NoContact {
             side: side.name,
             reason,
         })?;
     let touch = side
-        .candidates
+        .geometry
+        .candidates()
         .as_slice()
         .iter()
         .map(|c| c.gap)
@@ -1164,7 +1160,8 @@ fn hertz_side(
     }
     // First approach: a Hertzian estimate for the deepest point alone.
     let deepest = side
-        .candidates
+        .geometry
+        .candidates()
         .as_slice()
         .iter()
         .min_by(|a, b| a.gap.total_cmp(&b.gap))

@@ -39,6 +39,7 @@
 //! for noisier or sparser data, accepting 1–6 % crown bias. Built-in profiles are exact and never
 //! smoothed.
 
+pub mod bounds;
 pub mod error;
 pub mod parse;
 pub mod s1002;

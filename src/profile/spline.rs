@@ -319,6 +319,47 @@ impl CubicSpline {
         }
     }
 
+    /// Smallest and largest value of the spline (with its linear continuation) over [y0, y1]
+    /// (y0 ≤ y1), exact: per knot interval the cubic's end values and its stationary points
+    /// inside. Cost ∝ the knot intervals crossed — for set-up tables, not per-step work.
+    pub fn value_range(&self, y0: f64, y1: f64) -> (f64, f64) {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut take = |v: f64| {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        };
+        take(self.eval(y0).0);
+        take(self.eval(y1).0);
+        let n = self.knots.len();
+        let (first, last) = (self.knots[0], self.knots[n - 1]);
+        let (a, b) = (y0.max(first), y1.min(last));
+        if a >= b {
+            return (lo, hi);
+        }
+        let mut i = if a <= first {
+            0
+        } else {
+            self.index.interval(&self.knots, a)
+        };
+        while i < n - 1 && self.knots[i] < b {
+            let [_, c1, c2, c3] = self.coef[i];
+            let (k0, k1) = (self.knots[i], self.knots[i + 1]);
+            let (t0, t1) = (a.max(k0) - k0, b.min(k1) - k0);
+            take(self.eval(k0 + t0).0);
+            take(self.eval(k0 + t1).0);
+            // Stationary points: c1 + 2 c2 t + 3 c3 t² = 0.
+            let roots = quadratic_roots(3.0 * c3, 2.0 * c2, c1);
+            for t in roots.into_iter().flatten() {
+                if t > t0 && t < t1 {
+                    let [p0, p1, p2, p3] = self.coef[i];
+                    take(p0 + t * (p1 + t * (p2 + t * p3)));
+                }
+            }
+            i += 1;
+        }
+        (lo, hi)
+    }
+
     /// Value, first and second derivative at `y`. Linear continuation outside the knots; NaN in,
     /// NaN out. No allocation.
     #[inline]
@@ -350,6 +391,24 @@ impl CubicSpline {
             2.0 * c + 6.0 * d * t,
         )
     }
+}
+
+/// Real roots of a t² + b t + c (a linear or constant polynomial handled; `None` where there is
+/// no root).
+fn quadratic_roots(a: f64, b: f64, c: f64) -> [Option<f64>; 2] {
+    if a == 0.0 {
+        return [(b != 0.0).then(|| -c / b), None];
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return [None, None];
+    }
+    // The cancellation-free pair: q = −(b + sign(b) √disc)/2, roots q/a and c/q.
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    if q == 0.0 {
+        return [Some(0.0), None];
+    }
+    [Some(q / a), Some(c / q)]
 }
 
 /// The smoothing length ℓ [m] that brings the noise in the second derivative down to
