@@ -1,19 +1,58 @@
-//! Height bounds of a profile over lateral ranges.
+//! Bounds of a profile's height and slope over lateral ranges.
 //!
-//! The exact smallest and largest z of the profile's spline over uniform bins of its lateral
-//! range (each bin from the cubics' end values and stationary points,
-//! [`CubicSpline::value_range`](super::CubicSpline::value_range)); a query over any range
-//! [y0, y1] returns the extremes of the bins it touches, with the linear continuation outside
-//! the data taken exactly. The result always contains the true range; it is wider by at most the
-//! profile's variation within the two end bins.
+//! The exact smallest and largest z and dz/dy of the profile's spline over uniform bins of its
+//! lateral range (each bin from the cubics' and their derivatives' end values and stationary
+//! points, [`CubicSpline::value_range`](super::CubicSpline::value_range) and
+//! [`CubicSpline::slope_range`](super::CubicSpline::slope_range)), kept as sparse tables
+//! (level j: the extremes over 2^j consecutive bins), so that a query over any range [y0, y1]
+//! costs two table reads: the extremes of the bins it touches, with the linear continuation
+//! outside the data taken exactly. The result always contains the true range; it is wider by at
+//! most the profile's variation within the two end bins.
 //!
 //! Used by the contact search to skip the fine sampling of the gap where the surfaces cannot come
 //! near each other (`contact_search`).
 
 use super::Profile;
 
-/// Per-bin extremes of z over a profile's lateral range, as sparse tables: level j holds the
-/// extremes over 2^j consecutive bins, so any run of bins is two overlapping table entries.
+/// Extremes of one quantity over runs of bins (a sparse table).
+#[derive(Debug, Clone, PartialEq)]
+struct RunExtremes {
+    bins: usize,
+    /// Smallest and largest value over bins k .. k + 2^j − 1 at [j × bins + k].
+    min: Vec<f64>,
+    max: Vec<f64>,
+}
+
+impl RunExtremes {
+    fn new(per_bin: impl Iterator<Item = (f64, f64)>) -> Self {
+        let (mut min, mut max): (Vec<f64>, Vec<f64>) = per_bin.unzip();
+        let bins = min.len();
+        for j in 1..=bins.ilog2() as usize {
+            let (prev, half) = ((j - 1) * bins, 1usize << (j - 1));
+            for k in 0..bins {
+                // Entries running past the last bin repeat a shorter run (never read).
+                let other = prev + (k + half).min(bins - 1);
+                let (lo, hi) = (min[prev + k].min(min[other]), max[prev + k].max(max[other]));
+                min.push(lo);
+                max.push(hi);
+            }
+        }
+        Self { bins, min, max }
+    }
+
+    /// (min, max) over bins k0 ..= k1.
+    #[inline]
+    fn over(&self, k0: usize, k1: usize) -> (f64, f64) {
+        let j = (k1 - k0 + 1).ilog2() as usize;
+        let (e0, e1) = (j * self.bins + k0, j * self.bins + k1 + 1 - (1 << j));
+        (
+            self.min[e0].min(self.min[e1]),
+            self.max[e0].max(self.max[e1]),
+        )
+    }
+}
+
+/// Per-bin extremes of z and dz/dy over a profile's lateral range.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeightBounds {
     /// First and last data abscissa [m] and the inverse bin width [1/m].
@@ -21,9 +60,9 @@ pub struct HeightBounds {
     last: f64,
     inv_bin: f64,
     bins: usize,
-    /// Smallest and largest z over bins k .. k + 2^j − 1 at [j × bins + k] [m].
-    min: Vec<f64>,
-    max: Vec<f64>,
+    /// Heights [m] and slopes [-].
+    z: RunExtremes,
+    dz: RunExtremes,
     /// Value and slope at both ends (the linear continuation).
     start: (f64, f64),
     end: (f64, f64),
@@ -36,28 +75,23 @@ impl HeightBounds {
         let bins = (((last - first) / bin).ceil() as usize).max(1);
         let width = (last - first) / bins as f64;
         let spline = profile.spline();
-        let (mut min, mut max): (Vec<f64>, Vec<f64>) = (0..bins)
-            .map(|k| {
-                let y0 = first + width * k as f64;
-                let y1 = if k + 1 == bins {
-                    last
-                } else {
-                    first + width * (k + 1) as f64
-                };
-                spline.value_range(y0, y1)
-            })
-            .unzip();
-        let levels = bins.ilog2() as usize + 1;
-        for j in 1..levels {
-            let (prev, half) = ((j - 1) * bins, 1usize << (j - 1));
-            for k in 0..bins {
-                // Entries running past the last bin repeat the shorter run (never read).
-                let other = prev + (k + half).min(bins - 1);
-                let (lo, hi) = (min[prev + k].min(min[other]), max[prev + k].max(max[other]));
-                min.push(lo);
-                max.push(hi);
-            }
-        }
+        let edges = |k: usize| {
+            let y0 = first + width * k as f64;
+            let y1 = if k + 1 == bins {
+                last
+            } else {
+                first + width * (k + 1) as f64
+            };
+            (y0, y1)
+        };
+        let z = RunExtremes::new((0..bins).map(|k| {
+            let (y0, y1) = edges(k);
+            spline.value_range(y0, y1)
+        }));
+        let dz = RunExtremes::new((0..bins).map(|k| {
+            let (y0, y1) = edges(k);
+            spline.slope_range(y0, y1)
+        }));
         let (z0, dz0, _) = profile.eval(first);
         let (z1, dz1, _) = profile.eval(last);
         Self {
@@ -65,90 +99,67 @@ impl HeightBounds {
             last,
             inv_bin: 1.0 / width,
             bins,
-            min,
-            max,
+            z,
+            dz,
             start: (z0, dz0),
             end: (z1, dz1),
         }
     }
 
-    /// The bins touched by [y0, y1] inside the data, as table indices of the two entries that
-    /// cover them; `None` if the range lies outside the data.
+    /// The bins touched by [y0, y1] inside the data; `None` if it lies outside.
     #[inline]
-    fn entries(&self, y0: f64, y1: f64) -> Option<(usize, usize)> {
+    fn bins_of(&self, y0: f64, y1: f64) -> Option<(usize, usize)> {
         let (a, b) = (y0.max(self.first), y1.min(self.last));
         if a > b {
             return None;
         }
         let top = self.bins - 1;
         let bin = |y: f64| (((y - self.first) * self.inv_bin) as usize).min(top);
-        let (k0, k1) = (bin(a), bin(b));
-        let j = (k1 - k0 + 1).ilog2() as usize;
-        Some((j * self.bins + k0, j * self.bins + k1 + 1 - (1 << j)))
-    }
-
-    /// The linear continuation's values at the ends of the parts of [y0, y1] outside the data.
-    #[inline]
-    fn outside(&self, y0: f64, y1: f64) -> [Option<f64>; 4] {
-        let below = (y0 < self.first).then(|| {
-            let (z, dz) = self.start;
-            (
-                z + dz * (y0 - self.first),
-                z + dz * (y1.min(self.first) - self.first),
-            )
-        });
-        let above = (y1 > self.last).then(|| {
-            let (z, dz) = self.end;
-            (
-                z + dz * (y1 - self.last),
-                z + dz * (y0.max(self.last) - self.last),
-            )
-        });
-        [
-            below.map(|v| v.0),
-            below.map(|v| v.1),
-            above.map(|v| v.0),
-            above.map(|v| v.1),
-        ]
-    }
-
-    /// Lower bound on z over [y0, y1] [m] (y0 ≤ y1).
-    #[inline]
-    pub fn lower(&self, y0: f64, y1: f64) -> f64 {
-        let mut lo = match self.entries(y0, y1) {
-            Some((e0, e1)) => self.min[e0].min(self.min[e1]),
-            None => f64::INFINITY,
-        };
-        if y0 < self.first || y1 > self.last {
-            lo = self
-                .outside(y0, y1)
-                .into_iter()
-                .flatten()
-                .fold(lo, f64::min);
-        }
-        lo
-    }
-
-    /// Upper bound on z over [y0, y1] [m] (y0 ≤ y1).
-    #[inline]
-    pub fn upper(&self, y0: f64, y1: f64) -> f64 {
-        let mut hi = match self.entries(y0, y1) {
-            Some((e0, e1)) => self.max[e0].max(self.max[e1]),
-            None => f64::NEG_INFINITY,
-        };
-        if y0 < self.first || y1 > self.last {
-            hi = self
-                .outside(y0, y1)
-                .into_iter()
-                .flatten()
-                .fold(hi, f64::max);
-        }
-        hi
+        Some((bin(a), bin(b)))
     }
 
     /// Bounds (lower, upper) on z over [y0, y1] [m] (y0 ≤ y1).
+    #[inline]
     pub fn range(&self, y0: f64, y1: f64) -> (f64, f64) {
-        (self.lower(y0, y1), self.upper(y0, y1))
+        let (mut lo, mut hi) = match self.bins_of(y0, y1) {
+            Some((k0, k1)) => self.z.over(k0, k1),
+            None => (f64::INFINITY, f64::NEG_INFINITY),
+        };
+        // The linear continuation: extremes at the ends of the parts outside the data.
+        let mut take = |v: f64| {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        };
+        if y0 < self.first {
+            let (z, dz) = self.start;
+            take(z + dz * (y0 - self.first));
+            take(z + dz * (y1.min(self.first) - self.first));
+        }
+        if y1 > self.last {
+            let (z, dz) = self.end;
+            take(z + dz * (y1 - self.last));
+            take(z + dz * (y0.max(self.last) - self.last));
+        }
+        (lo, hi)
+    }
+
+    /// Bounds (lower, upper) on dz/dy over [y0, y1] [-] (y0 ≤ y1).
+    #[inline]
+    pub fn slope_range(&self, y0: f64, y1: f64) -> (f64, f64) {
+        let (mut lo, mut hi) = match self.bins_of(y0, y1) {
+            Some((k0, k1)) => self.dz.over(k0, k1),
+            None => (f64::INFINITY, f64::NEG_INFINITY),
+        };
+        for (outside, slope) in [
+            (y0 < self.first, self.start.1),
+            (y1 > self.last, self.end.1),
+        ] {
+            if outside {
+                lo = lo.min(slope);
+                hi = hi.max(slope);
+            }
+        }
+        (lo, hi)
     }
 
     /// Smallest and largest z over the data [m].
@@ -231,7 +242,7 @@ mod tests {
                     hi = hi.max(z);
                 }
                 // Dense sampling misses a stationary value by z''(h/2)²/2, h ≤ 0.25 µm: < 1e−13 m.
-                let (b_lo, b_hi) = (bounds.min[k], bounds.max[k]);
+                let (b_lo, b_hi) = bounds.z.over(k, k);
                 assert!((b_lo - lo).abs() < 1e-12, "bin {k}: {b_lo} {lo}");
                 assert!((b_hi - hi).abs() < 1e-12, "bin {k}: {b_hi} {hi}");
                 let (z0, z1) = (profile.z(y0), profile.z(y1));

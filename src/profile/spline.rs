@@ -131,8 +131,9 @@ impl IntervalIndex {
         }
     }
 
-    /// The interval i with knots[i] ≤ y < knots[i + 1], for y₁ < y < yₙ.
-    #[inline]
+    /// The interval i with knots[i] ≤ y < knots[i + 1], for y₁ < y < yₙ. (Always inlined: the
+    /// per-sample evaluation is its hot caller.)
+    #[inline(always)]
     fn interval(&self, knots: &[f64], y: f64) -> usize {
         let cells = self.first.len() - 1;
         // Through u32 (cells < 2³²): a saturating f64 → u32 conversion is a few instructions
@@ -353,6 +354,45 @@ impl CubicSpline {
                 if t > t0 && t < t1 {
                     let [p0, p1, p2, p3] = self.coef[i];
                     take(p0 + t * (p1 + t * (p2 + t * p3)));
+                }
+            }
+            i += 1;
+        }
+        (lo, hi)
+    }
+
+    /// Smallest and largest slope dz/dy over [y0, y1] (y0 ≤ y1), exact: per knot interval the
+    /// quadratic's end values and its vertex inside. For set-up tables, as `value_range`.
+    pub fn slope_range(&self, y0: f64, y1: f64) -> (f64, f64) {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut take = |v: f64| {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        };
+        take(self.eval(y0).1);
+        take(self.eval(y1).1);
+        let n = self.knots.len();
+        let (first, last) = (self.knots[0], self.knots[n - 1]);
+        let (a, b) = (y0.max(first), y1.min(last));
+        if a >= b {
+            return (lo, hi);
+        }
+        let mut i = if a <= first {
+            0
+        } else {
+            self.index.interval(&self.knots, a)
+        };
+        while i < n - 1 && self.knots[i] < b {
+            let [_, c1, c2, c3] = self.coef[i];
+            let k0 = self.knots[i];
+            let (t0, t1) = (a.max(k0) - k0, b.min(self.knots[i + 1]) - k0);
+            let slope = |t: f64| c1 + t * (2.0 * c2 + 3.0 * c3 * t);
+            take(slope(t0));
+            take(slope(t1));
+            if c3 != 0.0 {
+                let vertex = -c2 / (3.0 * c3);
+                if vertex > t0 && vertex < t1 {
+                    take(slope(vertex));
                 }
             }
             i += 1;
