@@ -851,7 +851,7 @@ impl WheelOnRail {
             let lead_term = lead * p.sin_yaw.abs();
             let (n_lo, n_hi) = (r_slope.0 - lead_term, r_slope.1 + lead_term);
             let z_lo = (r_lo * r_lo - lead * lead).max(0.0).sqrt();
-            if !(z_lo > 0.0) {
+            if z_lo <= 0.0 {
                 return by_heights - BOUND_ROUNDING;
             }
             (
