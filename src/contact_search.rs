@@ -313,8 +313,10 @@ pub struct WheelOnRail {
     coarse_stride: usize,
     /// The coarse intervals of the last search.
     coarse: Vec<CoarseInterval>,
-    /// Every sample of the last search with a gap below this is computed [m].
+    /// Every sample of the last search with a gap below this is computed [m], and lies in this
+    /// span of sample indices (the coarse intervals whose bound lies below it).
     filled_level: f64,
+    filled_span: (usize, usize),
     /// Lateral coordinate of the first sample and the sample spacing of the last search [m].
     scan_lo: f64,
     scan_dw: f64,
@@ -590,6 +592,7 @@ impl WheelOnRail {
             coarse: Vec::with_capacity(capacity),
             coarse_stride: COARSE_STRIDE,
             filled_level: f64::NEG_INFINITY,
+            filled_span: (usize::MAX, 0),
             scan_lo: 0.0,
             scan_dw: scan_step,
             pose: Prepared::default(),
@@ -883,9 +886,14 @@ impl WheelOnRail {
         let mut samples = std::mem::take(&mut self.samples);
         let mut coarse = std::mem::take(&mut self.coarse);
         let mut unfilled_left = false;
-        for c in coarse.iter_mut().filter(|c| !c.filled) {
+        let (mut span_lo, mut span_hi) = self.filled_span;
+        for c in coarse.iter_mut() {
             if c.lower >= level {
-                unfilled_left = true;
+                unfilled_left |= !c.filled;
+                continue;
+            }
+            (span_lo, span_hi) = (span_lo.min(c.first), span_hi.max(c.last));
+            if c.filled {
                 continue;
             }
             for (i, s) in samples
@@ -898,11 +906,15 @@ impl WheelOnRail {
             }
             c.filled = true;
         }
-        self.samples = samples;
-        self.coarse = coarse;
         let searched = self.filled_level > f64::NEG_INFINITY;
         // With every sample computed, every sample lies below the level.
-        self.filled_level = if unfilled_left { level } else { f64::INFINITY };
+        (self.filled_level, self.filled_span) = if unfilled_left {
+            (level, (span_lo, span_hi))
+        } else {
+            (f64::INFINITY, (0, samples.len() - 1))
+        };
+        self.samples = samples;
+        self.coarse = coarse;
         // More minima may lie below the new level (the search itself finds them once).
         if searched {
             self.find_candidates();
@@ -1074,9 +1086,11 @@ impl WheelOnRail {
         self.fill_to(dz);
         let s = &self.samples;
         let mut count = 0usize;
-        let mut i = s.len();
+        // Every sample below dz lies in the filled span.
+        let (span_lo, span_hi) = self.filled_span;
+        let mut i = span_hi + 1;
         // Walk from the field side (last sample) to the gauge side.
-        while i > 0 {
+        while i > span_lo {
             i -= 1;
             if s[i].gap >= dz {
                 continue;
@@ -1315,16 +1329,16 @@ impl WheelOnRail {
         self.samples = samples;
         self.coarse = coarse;
         self.filled_level = f64::NEG_INFINITY;
+        self.filled_span = (usize::MAX, 0);
         // Every sample below the deepest coarse one is computed: the deepest sample is exact.
         self.fill_to(coarse_deepest + INITIAL_FILL_DEPTH);
 
         // Deepest sample overall: at a profile end means no contact inside the profiles.
         let s = &self.samples;
-        let deepest = s
-            .iter()
-            .enumerate()
-            .min_by(|a, b| a.1.gap.total_cmp(&b.1.gap))
-            .map_or(0, |(i, _)| i);
+        let (span_lo, span_hi) = self.filled_span;
+        let deepest = (span_lo..=span_hi)
+            .min_by(|&a, &b| s[a].gap.total_cmp(&s[b].gap))
+            .unwrap_or(0);
         if deepest == 0 || deepest == n {
             let y_rail = s[deepest].y_rail;
             return Err(SearchError::AtProfileEnd { lateral, y_rail });
@@ -1362,7 +1376,9 @@ impl WheelOnRail {
         let mut found = [0usize; MAX_CANDIDATES];
         let mut count = 0usize;
         let mut ridge = f64::NEG_INFINITY;
-        for i in 1..n {
+        // Minima below the level lie in the filled span.
+        let (span_lo, span_hi) = self.filled_span;
+        for i in span_lo.max(1)..span_hi.min(n) {
             let g = s[i].gap;
             ridge = ridge.max(g);
             if !(g < level - MIN_PROMINENCE && g <= s[i - 1].gap && g < s[i + 1].gap) {
