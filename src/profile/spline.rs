@@ -324,78 +324,80 @@ impl CubicSpline {
     /// (y0 ≤ y1), exact: per knot interval the cubic's end values and its stationary points
     /// inside. Cost ∝ the knot intervals crossed — for set-up tables, not per-step work.
     pub fn value_range(&self, y0: f64, y1: f64) -> (f64, f64) {
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        let mut take = |v: f64| {
-            lo = lo.min(v);
-            hi = hi.max(v);
-        };
-        take(self.eval(y0).0);
-        take(self.eval(y1).0);
-        let n = self.knots.len();
-        let (first, last) = (self.knots[0], self.knots[n - 1]);
-        let (a, b) = (y0.max(first), y1.min(last));
-        if a >= b {
-            return (lo, hi);
-        }
-        let mut i = if a <= first {
-            0
-        } else {
-            self.index.interval(&self.knots, a)
-        };
-        while i < n - 1 && self.knots[i] < b {
-            let [_, c1, c2, c3] = self.coef[i];
-            let (k0, k1) = (self.knots[i], self.knots[i + 1]);
-            let (t0, t1) = (a.max(k0) - k0, b.min(k1) - k0);
-            take(self.eval(k0 + t0).0);
-            take(self.eval(k0 + t1).0);
-            // Stationary points: c1 + 2 c2 t + 3 c3 t² = 0.
-            let roots = quadratic_roots(3.0 * c3, 2.0 * c2, c1);
-            for t in roots.into_iter().flatten() {
-                if t > t0 && t < t1 {
-                    let [p0, p1, p2, p3] = self.coef[i];
-                    take(p0 + t * (p1 + t * (p2 + t * p3)));
+        let cubic = |[c0, c1, c2, c3]: [f64; 4], t: f64| c0 + t * (c1 + t * (c2 + t * c3));
+        self.range_over_pieces(
+            y0,
+            y1,
+            |y| self.eval(y).0,
+            |c, (t0, t1), take| {
+                take(cubic(c, t0));
+                take(cubic(c, t1));
+                // Stationary points: c1 + 2 c2 t + 3 c3 t² = 0.
+                for t in quadratic_roots(3.0 * c[3], 2.0 * c[2], c[1])
+                    .into_iter()
+                    .flatten()
+                {
+                    if t > t0 && t < t1 {
+                        take(cubic(c, t));
+                    }
                 }
-            }
-            i += 1;
-        }
-        (lo, hi)
+            },
+        )
     }
 
     /// Smallest and largest slope dz/dy over [y0, y1] (y0 ≤ y1), exact: per knot interval the
     /// quadratic's end values and its vertex inside. For set-up tables, as `value_range`.
     pub fn slope_range(&self, y0: f64, y1: f64) -> (f64, f64) {
+        let slope = |[_, c1, c2, c3]: [f64; 4], t: f64| c1 + t * (2.0 * c2 + 3.0 * c3 * t);
+        self.range_over_pieces(
+            y0,
+            y1,
+            |y| self.eval(y).1,
+            |c, (t0, t1), take| {
+                take(slope(c, t0));
+                take(slope(c, t1));
+                if c[3] != 0.0 {
+                    let vertex = -c[2] / (3.0 * c[3]);
+                    if vertex > t0 && vertex < t1 {
+                        take(slope(c, vertex));
+                    }
+                }
+            },
+        )
+    }
+
+    /// (min, max) over [y0, y1] of a quantity given by `at_end` at the two ends (which covers the
+    /// linear continuation outside the knots) and by `piece` on each knot interval crossed:
+    /// `piece(coefficients, (t0, t1), take)` passes every candidate extreme of the interval's
+    /// part t ∈ [t0, t1] (t from the interval's first knot) to `take`.
+    fn range_over_pieces(
+        &self,
+        y0: f64,
+        y1: f64,
+        at_end: impl Fn(f64) -> f64,
+        mut piece: impl FnMut([f64; 4], (f64, f64), &mut dyn FnMut(f64)),
+    ) -> (f64, f64) {
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         let mut take = |v: f64| {
             lo = lo.min(v);
             hi = hi.max(v);
         };
-        take(self.eval(y0).1);
-        take(self.eval(y1).1);
+        take(at_end(y0));
+        take(at_end(y1));
         let n = self.knots.len();
         let (first, last) = (self.knots[0], self.knots[n - 1]);
         let (a, b) = (y0.max(first), y1.min(last));
-        if a >= b {
-            return (lo, hi);
-        }
-        let mut i = if a <= first {
-            0
-        } else {
-            self.index.interval(&self.knots, a)
-        };
-        while i < n - 1 && self.knots[i] < b {
-            let [_, c1, c2, c3] = self.coef[i];
-            let k0 = self.knots[i];
-            let (t0, t1) = (a.max(k0) - k0, b.min(self.knots[i + 1]) - k0);
-            let slope = |t: f64| c1 + t * (2.0 * c2 + 3.0 * c3 * t);
-            take(slope(t0));
-            take(slope(t1));
-            if c3 != 0.0 {
-                let vertex = -c2 / (3.0 * c3);
-                if vertex > t0 && vertex < t1 {
-                    take(slope(vertex));
-                }
+        if a < b {
+            let mut i = if a <= first {
+                0
+            } else {
+                self.index.interval(&self.knots, a)
+            };
+            while i < n - 1 && self.knots[i] < b {
+                let (k0, k1) = (self.knots[i], self.knots[i + 1]);
+                piece(self.coef[i], (a.max(k0) - k0, b.min(k1) - k0), &mut take);
+                i += 1;
             }
-            i += 1;
         }
         (lo, hi)
     }
