@@ -7,13 +7,13 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use railcontact::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use railcontact::hertz::hertz_from_approach;
 use railcontact::patch_tangential::TangentialModel;
-use railcontact::point_contact::Material;
-use railcontact::profile::{Profile, ProfileKind};
 use railcontact::strips::NormalModel;
-use railcontact::track::TrackSetup;
 use railcontact::wheelset::{
     Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
 };
+
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 const Q: f64 = 78_500.0;
 
@@ -22,17 +22,10 @@ fn wheelset(model: NormalModel, tangential: TangentialModel) -> Wheelset {
 }
 
 fn wheelset_with(model: NormalModel, adjust: impl FnOnce(&mut WheelsetSettings)) -> Wheelset {
-    let wheel = Profile::load("S1002", ProfileKind::Wheel, 0.0).unwrap();
-    let rail = Profile::load("UIC60", ProfileKind::Rail, 0.0).unwrap();
-    let material = Material {
-        youngs_modulus: 210e9,
-        poisson_ratio: 0.28,
-        friction: 0.3,
-    };
-    let mut settings = WheelsetSettings::new(TrackSetup::default(), material);
-    settings.normal_model = model;
-    adjust(&mut settings);
-    Wheelset::new(&wheel, &rail, settings).unwrap()
+    common::builtin_wheelset_with(|settings| {
+        settings.normal_model = model;
+        adjust(settings);
+    })
 }
 
 fn input(y: f64) -> WheelsetInput {

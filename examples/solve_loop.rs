@@ -13,13 +13,11 @@
 //! model (`hertz`, `linder`, `kik-piotrowski`, `stripes-b`, `stripes-ab`, `analyn`), the number
 //! of solves, and `moving` for the moving pose.
 
-use railcontact::point_contact::Material;
-use railcontact::profile::{Profile, ProfileKind};
 use railcontact::strips::NormalModel;
-use railcontact::track::TrackSetup;
-use railcontact::wheelset::{
-    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
-};
+use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
+
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -30,16 +28,7 @@ fn main() {
         .expect(usage);
     let solves: usize = args.get(2).and_then(|n| n.parse().ok()).expect(usage);
     let moving = args.get(3).is_some_and(|a| a == "moving");
-    let wheel = Profile::load("S1002", ProfileKind::Wheel, 0.0).expect("built-in S1002");
-    let rail = Profile::load("UIC60", ProfileKind::Rail, 0.0).expect("built-in UIC60");
-    let material = Material {
-        youngs_modulus: 210e9,
-        poisson_ratio: 0.28,
-        friction: 0.3,
-    };
-    let mut settings = WheelsetSettings::new(TrackSetup::default(), material);
-    settings.normal_model = model;
-    let mut wheelset = Wheelset::new(&wheel, &rail, settings).expect("wheelset");
+    let mut wheelset = common::builtin_wheelset_with(|settings| settings.normal_model = model);
     let input = |k: usize| WheelsetInput {
         y: if moving {
             3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin()

@@ -1091,7 +1091,8 @@ impl WheelOnRail {
     /// 17 mm wide, 25 µm deep) it lands within 1 mm of CONTACT's reference point, where the
     /// rigid region's (δ − f)^{3/2} centroid was 2 mm off and the deepest point 2.8 mm. Regions
     /// are written field side first; returns how many there are (at most `out.len()`; if more
-    /// exist, the deepest are kept).
+    /// exist, the deepest are kept). Computes the samples below `dz` the search has not computed
+    /// yet, and the candidates among them ([`WheelOnRail::candidates`]).
     pub fn regions(&mut self, dz: f64, out: &mut [Region]) -> usize {
         self.fill_to(dz);
         let s = &self.samples;

@@ -11,14 +11,11 @@
 //! asserted: its curvature correction depends on the strip width, so it has no converged result
 //! to be within 1 % of (documented in docs/performance.md).
 
+mod common;
+
 use railcontact::fastsim::{Creepage, FastsimSettings};
-use railcontact::point_contact::Material;
-use railcontact::profile::{Profile, ProfileKind};
 use railcontact::strips::NormalModel;
-use railcontact::track::TrackSetup;
-use railcontact::wheelset::{
-    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
-};
+use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
 
 /// Tolerance of the issue: 1 % of the converged force.
 const TOLERANCE: f64 = 0.01;
@@ -27,24 +24,17 @@ const FINE: usize = 200;
 
 /// The right wheel's tangential force (Σ Fx, Σ Fy over its patches) [N].
 fn tangential_force(model: NormalModel, fine: bool, creepage: Creepage) -> [f64; 2] {
-    let wheel = Profile::load("S1002", ProfileKind::Wheel, 0.0).unwrap();
-    let rail = Profile::load("UIC60", ProfileKind::Rail, 0.0).unwrap();
-    let material = Material {
-        youngs_modulus: 210e9,
-        poisson_ratio: 0.28,
-        friction: 0.3,
-    };
-    let mut settings = WheelsetSettings::new(TrackSetup::default(), material);
-    settings.normal_model = model;
-    if fine {
-        settings.strips = FINE;
-        settings.fastsim = FastsimSettings {
-            nx: FINE,
-            ny: FINE,
-            ..settings.fastsim
-        };
-    }
-    let mut ws = Wheelset::new(&wheel, &rail, settings).unwrap();
+    let mut ws = common::builtin_wheelset_with(|settings| {
+        settings.normal_model = model;
+        if fine {
+            settings.strips = FINE;
+            settings.fastsim = FastsimSettings {
+                nx: FINE,
+                ny: FINE,
+                ..settings.fastsim
+            };
+        }
+    });
     let input = WheelsetInput {
         y: 0.0,
         yaw: 0.0,

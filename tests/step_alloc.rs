@@ -3,6 +3,8 @@
 //! option, and `fmi2DoStep` of the WheelRailContact FMU through its exported C functions. Counted with a global allocator wrapper; one test in this binary so
 //! that no other test thread allocates meanwhile.
 
+mod common;
+
 use fmi_sys::fmi2::*;
 use railcontact::fastsim::{
     Creepage, EllipticContact, Fastsim, FastsimSettings, Flexibility, TractionBound,
@@ -10,13 +12,8 @@ use railcontact::fastsim::{
 use railcontact::fmi::export::*;
 use railcontact::models::wheel_rail_contact::INFO;
 use railcontact::patch_tangential::TangentialModel;
-use railcontact::point_contact::Material;
-use railcontact::profile::{Profile, ProfileKind};
 use railcontact::strips::NormalModel;
-use railcontact::track::TrackSetup;
-use railcontact::wheelset::{
-    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
-};
+use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::ffi::CString;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -48,21 +45,14 @@ fn ramp(k: usize) -> f64 {
 }
 
 fn wheelset_steps_do_not_allocate() {
-    let wheel = Profile::load("S1002", ProfileKind::Wheel, 0.0).unwrap();
-    let rail = Profile::load("UIC60", ProfileKind::Rail, 0.0).unwrap();
-    let material = Material {
-        youngs_modulus: 210e9,
-        poisson_ratio: 0.28,
-        friction: 0.3,
-    };
     for model in NormalModel::ALL {
         for tangential in TangentialModel::ALL {
             for planar in [false, true] {
-                let mut settings = WheelsetSettings::new(TrackSetup::default(), material);
-                settings.normal_model = model;
-                settings.tangential = tangential;
-                settings.planar_patch = planar;
-                let mut ws = Wheelset::new(&wheel, &rail, settings).unwrap();
+                let mut ws = common::builtin_wheelset_with(|settings| {
+                    settings.normal_model = model;
+                    settings.tangential = tangential;
+                    settings.planar_patch = planar;
+                });
                 let mut out = WheelsetResult::default();
                 let input = |y| WheelsetInput {
                     y,

@@ -1,5 +1,6 @@
-//! Shared set-up of the integration tests that use `../shared`: the data directory and the
-//! benchmark wheelset (physics.md §8.5; reference/README.md).
+//! Shared set-up of the integration tests: the data directory of `../shared` and the benchmark
+//! wheelset (physics.md §8.5; reference/README.md), and the built-in S1002/UIC60 wheelset (also
+//! included by `benches/contact.rs` and `examples/solve_loop.rs`).
 
 use std::path::{Path, PathBuf};
 
@@ -67,6 +68,26 @@ pub fn benchmark_wheelset_with(
         settings,
     )
     .expect("benchmark wheelset")
+}
+
+/// Steel as the built-in-profile set-ups use it: E = 210 GPa, ν = 0.28, μ = 0.3.
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub const STEEL: Material = Material {
+    youngs_modulus: 210e9,
+    poisson_ratio: 0.28,
+    friction: 0.3,
+};
+
+/// The built-in S1002 wheel on the built-in UIC60 rail on the default track (1:40, gauge
+/// 1435 mm), steel, with settings adjusted by `adjust` (from the defaults of
+/// [`WheelsetSettings::new`]): the benches' and the speed tests' wheelset (no shared data).
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub fn builtin_wheelset_with(adjust: impl FnOnce(&mut WheelsetSettings)) -> Wheelset {
+    let wheel = Profile::load("S1002", ProfileKind::Wheel, 0.0).expect("built-in S1002");
+    let rail = Profile::load("UIC60", ProfileKind::Rail, 0.0).expect("built-in UIC60");
+    let mut settings = WheelsetSettings::new(TrackSetup::default(), STEEL);
+    adjust(&mut settings);
+    Wheelset::new(&wheel, &rail, settings).expect("built-in wheelset")
 }
 
 /// Rows of a reference CSV file of the shared data as (header → value) maps; non-numeric fields
