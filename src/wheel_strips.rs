@@ -2,10 +2,11 @@
 //! per patch, and the wheel's vertical position for a prescribed load (physics.md §5.1–§5.2).
 //!
 //! For a wheel lowered by dz from its nominal height:
-//! 1. every interpenetration region of the rigid gap (at a generous trial lowering, so that each
-//!    model's patch lies inside) becomes a patch: its contact plane is the tangent plane at the
-//!    deepest contact candidate inside the region (the first-contact point, s = 0), and its
-//!    strips cover the region ([`crate::contact_search::WheelOnRail::strip_geometry`]);
+//! 1. every interpenetration region of the rigid gap at a trial lowering (0.7 × the Hertz
+//!    approach beyond first contact: there the models' patches fill 75–85 % of the region on a
+//!    tread) becomes a patch: its contact plane is the tangent plane at the deepest contact
+//!    candidate inside the region (the first-contact point, s = 0), and its strips cover the
+//!    region ([`crate::contact_search::WheelOnRail::strip_geometry`]);
 //! 2. the patch's normal approach is δ_p = dz cos γ_p − g_p (g_p its normal gap at nominal
 //!    height) and the strip model gives its pressure; the wheel's vertical force is
 //!    Σ N_p cos γ_p, γ_p the rail's angle at the patch's force centroid (its reference point,
@@ -13,11 +14,15 @@
 //!    components (held fixed during the iteration);
 //! 3. prescribed load: dz by a bracketed Illinois iteration (N(dz) is monotone and continuous; its
 //!    slope jumps where strips or patches enter, which a bracketing method tolerates);
-//! 4. **re-striping**: the strips of step 1 cover the rigid interpenetration region, wider than a
-//!    model's patch. After the first solve every contiguous run of strips in contact becomes a
-//!    patch of its own (separate interpenetration regions → separate patches) with the same
-//!    number of strips over the run plus one old strip at each end, and dz is solved again. So
-//!    the strip count is the resolution across the patch itself.
+//! 4. **the verdict on the layout** ([`Verdict`]): where every patch holds one run of strips in
+//!    contact, closed at both ends and over at least 60 % of its strips, the layout is final (the
+//!    common case: one layout per solve). Otherwise, **re-striping**: every contiguous run of
+//!    strips in contact becomes a patch of its own (separate interpenetration regions → separate
+//!    patches) with the same number of strips over the run plus one old strip at each end, and
+//!    dz is solved again; where a run is open (the patch may reach beyond the range) or shorter
+//!    than three strips, the runs are first found anew on coarse strips over the region at 2 ×
+//!    the approach (widened until closed). So the strip count sets the resolution across the
+//!    patch itself: at least 60 % of the strips lie on it.
 //!
 //! Known limits: planar patches (one contact plane per patch; the strips' own angles are kept in
 //! [`StripPoints`] for the tangential problem); the vertical gap's regions decide which minima
@@ -126,20 +131,100 @@ pub struct StripSettings {
 
 /// Iteration limit of the load balance.
 const LOAD_ITERATIONS: usize = 80;
-/// Trial lowering for the strip range, as a multiple of the Hertz approach: the models' patches
-/// lie inside {f < δ} for ε < 1, and their approaches at a given load stay within ~1.5× Hertz's;
-/// a patch touching the range's end triggers a wider range.
-const RANGE_FACTOR: f64 = 2.0;
+/// Trial lowering of the first layout's strip range, as a multiple of the Hertz approach (the
+/// strips then cover the interpenetration region at that lowering). The range is meant to be
+/// final: on the built-in S1002/UIC60 tread the models' patches cover 75–85 % of it (18–20 of
+/// 24 strips; 0.5 would put Linder's and Kik–Piotrowski's at the range's ends, 1.0 leaves 15 of
+/// 24 strips to STRIPES). Where a patch does not fit (an open run) or is too small in it, the
+/// layout is redone ([`Verdict`]).
+const RANGE_FACTOR: f64 = 0.7;
+/// Smallest share of a patch's strips that its run of strips in contact must cover for the
+/// first layout to stand as the final one (else each run is re-striped: see [`Verdict`]). At
+/// 0.6 of 24 strips a patch keeps at least 15 strips across it (accuracy: docs/performance.md).
+const ACCEPTED_RUN_SHARE: f64 = 0.6;
+/// Fewest strips of a run that the re-striping may start from: a run of one or two strips
+/// locates a patch only to within a strip, too coarsely to lay the final strips over it (at a
+/// 1 N load the patch of a single first-layout strip was wider than the three strips around
+/// it); such layouts are redone over the wide range.
+const MIN_RESTRIP_RUN: usize = 3;
+/// Trial lowering of the wide fallback range (as a multiple of the Hertz approach): the models'
+/// patches lie inside {f < δ} for ε < 1, and their approaches at a given load stay within ~1.5×
+/// Hertz's; a patch touching the range's end triggers a wider range.
+const WIDE_RANGE_FACTOR: f64 = 2.0;
 /// Range widenings before giving up on containing a patch (each doubles the trial approach).
 const RANGE_RETRIES: usize = 4;
 
-/// Strips of the first layout (step 1) for `strips` on the final patches: half as many. The
-/// first layout only has to find where each model's patch lies (its runs of strips in
-/// contact); the final strips cover a run plus one first-layout strip at each end, so halving
-/// the first layout widens that margin by a few per cent of the patch while sparing half of the
-/// first layout's geometry and load iteration. Never fewer than 5 (or `strips` if smaller): a run
-/// must stay resolved. Runs one strip apart are one run (see `restrip`).
-fn first_layout_strips(strips: usize) -> usize {
+/// A contiguous run of strips in contact on a patch (see [`StripPatch::runs`]).
+#[derive(Debug, Clone, Copy, Default)]
+struct Run {
+    /// First and last strip of the run (indices into the patch's strips).
+    first: usize,
+    last: usize,
+    /// The run reaches an end of the strip range where the gap still rises outwards: the
+    /// patch may extend beyond the range.
+    open: bool,
+}
+
+impl StripPatch {
+    /// The runs of strips in contact, from the field side (largest s) to the gauge side, as
+    /// the regions come; at most `out.len()`. A run continues across a single strip out of
+    /// contact: [`StripSide::restrip`] gives each run a range one strip beyond its ends, so two
+    /// runs one strip apart would get overlapping ranges — two patches over the same contact,
+    /// whose forces add up (a coarse layout can put one strip centre in a notch of a patch).
+    fn runs(&self, out: &mut [Run]) -> usize {
+        let sol = &self.sol;
+        let f = &self.geom.f;
+        let n = self.geom.len();
+        let in_contact = |j: usize| sol.half_length[j] > 0.0;
+        let mut count = 0;
+        let mut i = n;
+        while i > 0 && count < out.len() {
+            i -= 1;
+            if !in_contact(i) {
+                continue;
+            }
+            let last = i;
+            while i > 0 && (in_contact(i - 1) || (i > 1 && in_contact(i - 2))) {
+                i -= 1;
+            }
+            let first = i;
+            // A run at the end of the range needs a wider range only where the gap still rises
+            // outwards there; where it falls, the run leans on a neighbouring contact
+            // (two-point contact seen from this patch's plane, which has its own region), and
+            // widening would only merge the two.
+            let open_low = first == 0 && (n < 2 || f[0] >= f[1]);
+            let open_high = last == n - 1 && (n < 2 || f[n - 1] >= f[n - 2]);
+            out[count] = Run {
+                first,
+                last,
+                open: open_low || open_high,
+            };
+            count += 1;
+        }
+        count
+    }
+}
+
+/// What becomes of a strip layout after its first solve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Verdict {
+    /// Every patch holds one closed run of strips in contact over at least
+    /// [`ACCEPTED_RUN_SHARE`] of its strips: the layout is final.
+    Accept,
+    /// The runs are closed and of at least [`MIN_RESTRIP_RUN`] strips, but a patch holds
+    /// several or a small one: each run gets its own strips ([`StripSide::restrip`]).
+    Restrip,
+    /// A run is open (the patch may reach beyond its range) or too short to re-stripe from, or
+    /// nothing is in contact: redo the layout over the wide range.
+    Widen,
+}
+
+/// Strips of the wide fallback layout for `strips` on the final patches: half as many. That
+/// layout only has to find where each model's patch lies (its runs of strips in contact); the
+/// final strips cover a run plus one of its strips at each end, so halving it widens that
+/// margin by a few per cent of the patch while sparing half of its geometry and load
+/// iteration. Never fewer than 5 (or `strips` if smaller): a run must stay resolved.
+fn wide_layout_strips(strips: usize) -> usize {
     strips.div_ceil(2).max(strips.min(5))
 }
 
@@ -185,11 +270,12 @@ impl StripSide {
             .sum()
     }
 
-    /// Step 1: one patch per interpenetration region at lowering `dz_range`.
+    /// Step 1: one patch of `strips` strips per interpenetration region at lowering `dz_range`.
     fn build_from_regions(
         &mut self,
         geometry: &mut WheelOnRail,
         dz_range: f64,
+        strips: usize,
         settings: &StripSettings,
         table: &HertzShapeTable,
     ) {
@@ -210,9 +296,32 @@ impl StripSide {
                 geometry.lateral_at(region.first as f64 - 1.0),
                 geometry.lateral_at(region.last as f64 + 1.0),
             );
-            let strips = first_layout_strips(settings.strips);
             self.patches[self.count].set_up(geometry, origin, ends, strips, settings, table);
             self.count += 1;
+        }
+    }
+
+    /// What to do with the current layout after its first solve.
+    fn verdict(&self) -> Verdict {
+        let mut restrip = false;
+        let mut any_run = false;
+        for patch in self.patches() {
+            let mut runs = [Run::default(); MAX_PATCHES];
+            let n = patch.geom.len();
+            let found = patch.runs(&mut runs);
+            for run in &runs[..found] {
+                if run.open || run.last + 1 - run.first < MIN_RESTRIP_RUN.min(n) {
+                    return Verdict::Widen;
+                }
+            }
+            any_run |= found > 0;
+            let share = |run: &Run| (run.last + 1 - run.first) as f64 / n as f64;
+            restrip |= found != 1 || share(&runs[0]) < ACCEPTED_RUN_SHARE;
+        }
+        match (any_run, restrip) {
+            (false, _) => Verdict::Widen,
+            (true, true) => Verdict::Restrip,
+            (true, false) => Verdict::Accept,
         }
     }
 
@@ -229,30 +338,10 @@ impl StripSide {
         for k in 0..self.count {
             let old = &self.patches[k];
             let n = old.geom.len();
-            // Runs from the field side (largest s) to the gauge side, as the regions come.
-            let mut i = n;
-            while i > 0 && count < MAX_PATCHES {
-                i -= 1;
-                if old.sol.half_length[i] <= 0.0 {
-                    continue;
-                }
-                let last = i;
-                // A run continues across a single strip out of contact: the new ranges reach one
-                // old strip beyond each run, so two runs one strip apart would get overlapping
-                // ranges — two patches over the same contact, whose forces add up (a coarse first
-                // layout can put one strip centre in a notch of a patch).
-                let in_contact = |j: usize| old.sol.half_length[j] > 0.0;
-                while i > 0 && (in_contact(i - 1) || (i > 1 && in_contact(i - 2))) {
-                    i -= 1;
-                }
-                let first = i;
-                // A run at the end of the range needs a wider range only where the gap still
-                // rises outwards there; where it falls, the run leans on a neighbouring contact
-                // (two-point contact seen from this patch's plane, which has its own region),
-                // and widening would only merge the two.
-                let open_low = first == 0 && (n < 2 || old.geom.f[0] >= old.geom.f[1]);
-                let open_high = last == n - 1 && (n < 2 || old.geom.f[n - 1] >= old.geom.f[n - 2]);
-                if open_low || open_high {
+            let mut runs = [Run::default(); MAX_PATCHES];
+            let found = old.runs(&mut runs[..MAX_PATCHES - count]);
+            for &Run { first, last, open } in &runs[..found] {
+                if open {
                     contained = false;
                 }
                 // Rail points one old strip beyond the run (or the run's own end strips).
@@ -296,26 +385,58 @@ impl StripSide {
         dz_hint: f64,
     ) -> f64 {
         let params = settings.params;
-        let mut approach = (dz_hint - touch).max(0.0);
-        let mut dz = dz_hint;
-        for _ in 0..=RANGE_RETRIES {
-            let dz_range = match target {
-                Some(_) => touch + RANGE_FACTOR * approach,
-                None => dz_hint,
-            };
-            self.build_from_regions(geometry, dz_range, settings, table);
-            dz = match target {
-                Some(q) => self.iterate(q, touch, approach, &params, table),
-                None => {
-                    self.vertical_force(dz_hint, &params, table);
-                    dz_hint
-                }
-            };
-            let contained = self.restrip(geometry, settings, table);
-            if contained || target.is_none() {
-                break;
+        let approach = (dz_hint - touch).max(0.0);
+        // The first layout, meant to be final: `settings.strips` over each region at
+        // RANGE_FACTOR × the Hertz approach (or at the prescribed lowering).
+        let dz_range = match target {
+            Some(_) => touch + RANGE_FACTOR * approach,
+            None => dz_hint,
+        };
+        let mut dz = self.layout_and_solve(
+            geometry,
+            dz_range,
+            settings.strips,
+            settings,
+            table,
+            target,
+            touch,
+            approach,
+            dz_hint,
+        );
+        match self.verdict() {
+            Verdict::Accept => {
+                // Only a different final target needs a new balance.
+                return match (final_target, target) {
+                    (Some(q), Some(t)) if q != t => {
+                        self.iterate(q, touch, dz - touch, &params, table)
+                    }
+                    _ => dz,
+                };
             }
-            approach *= 2.0;
+            Verdict::Restrip => {
+                self.restrip(geometry, settings, table);
+            }
+            Verdict::Widen => {
+                // The wide fallback: coarse strips over the region at WIDE_RANGE_FACTOR × the
+                // approach, each run re-striped; widened while a run is open.
+                let mut approach = approach;
+                for _ in 0..=RANGE_RETRIES {
+                    let dz_range = match target {
+                        Some(_) => touch + WIDE_RANGE_FACTOR * approach,
+                        None => dz_hint,
+                    };
+                    let strips = wide_layout_strips(settings.strips);
+                    dz = self.layout_and_solve(
+                        geometry, dz_range, strips, settings, table, target, touch, approach,
+                        dz_hint,
+                    );
+                    let contained = self.restrip(geometry, settings, table);
+                    if contained || target.is_none() {
+                        break;
+                    }
+                    approach *= 2.0;
+                }
+            }
         }
         // The re-striped patches are solved afresh.
         match final_target.or(target) {
@@ -323,6 +444,31 @@ impl StripSide {
             None => {
                 self.vertical_force(dz, &params, table);
                 dz
+            }
+        }
+    }
+
+    /// Lays out `strips` strips per region at `dz_range` and solves them for `target` (first
+    /// trial at `approach` beyond `touch`) or at the lowering `dz_hint`. Returns the lowering.
+    #[allow(clippy::too_many_arguments)]
+    fn layout_and_solve(
+        &mut self,
+        geometry: &mut WheelOnRail,
+        dz_range: f64,
+        strips: usize,
+        settings: &StripSettings,
+        table: &HertzShapeTable,
+        target: Option<f64>,
+        touch: f64,
+        approach: f64,
+        dz_hint: f64,
+    ) -> f64 {
+        self.build_from_regions(geometry, dz_range, strips, settings, table);
+        match target {
+            Some(q) => self.iterate(q, touch, approach, &settings.params, table),
+            None => {
+                self.vertical_force(dz_hint, &settings.params, table);
+                dz_hint
             }
         }
     }
