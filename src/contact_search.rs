@@ -1168,7 +1168,9 @@ impl WheelOnRail {
     /// angle and profile coordinates there.
     pub fn point_at(&self, at: f64) -> ContactPoint {
         let s = &self.samples;
-        let i = (at.floor().max(0.0) as usize).min(s.len().saturating_sub(2));
+        // `as usize` floors a non-negative value (and saturates below 0) without a call to
+        // libm's floor, which baseline x86-64 (no SSE4.1 rounding) would need.
+        let i = (at as usize).min(s.len().saturating_sub(2));
         let t = at - i as f64;
         let lerp = |a: f64, b: f64| a + (b - a) * t;
         let sample = GapSample {

@@ -423,54 +423,110 @@ impl StripMarch {
         }; LANES];
         let mut px = [0.0_f64; LANES];
         let mut py = [0.0_f64; LANES];
-        let [lx, ly] = self.slip_flexibility;
         // The leading element's step is `lead_fraction` of a full one, all later steps full.
         let mut fraction = self.lead_fraction;
         for (i, &shape_factor) in shape.iter().enumerate().rev() {
-            let x = self.x_first + i as f64 * self.dx;
             let f = fraction;
             fraction = 1.0;
-            let step_y = f * (self.step_y_at_zero + self.step_y_per_x * (x + f * self.spin_offset));
-            let bound = self.bound_scale * shape_factor;
+            let (x, step_y, bound) = self.element(i, f, shape_factor);
             for lane in 0..LANES {
-                // Adhesion trial.
-                let trial_x = px[lane] - f * step_x[lane];
-                let trial_y = py[lane] - step_y;
-                let trial_sq = trial_x * trial_x + trial_y * trial_y;
-                let slipping = trial_sq > bound * bound;
-                let s = &mut sums[lane];
-                if slipping {
-                    // Scale back onto the bound, direction kept; slip displacement S = L (p − p*).
-                    let f = bound / trial_sq.sqrt();
-                    px[lane] = trial_x * f;
-                    py[lane] = trial_y * f;
-                    let sx = lx * (px[lane] - trial_x);
-                    let sy = ly * (py[lane] - trial_y);
-                    s.sum_power += bound * (sx * sx + sy * sy).sqrt();
-                } else {
-                    px[lane] = trial_x;
-                    py[lane] = trial_y;
-                    s.n_adhesion += 1;
-                }
-                let o = &mut out[lane];
-                o.px[i] = px[lane];
-                o.py[i] = py[lane];
-                o.slipping[i] = slipping;
-                s.sum_px += px[lane];
-                s.sum_py += py[lane];
-                s.sum_x_py += x * py[lane];
-                s.max_traction_sq = s
-                    .max_traction_sq
-                    .max(px[lane] * px[lane] + py[lane] * py[lane]);
+                let p = (&mut px[lane], &mut py[lane]);
+                let step = (f * step_x[lane], step_y);
+                self.step(p, step, bound, x, i, &mut sums[lane], &mut out[lane]);
             }
         }
         sums
+    }
+
+    /// F3 on two different strips of the same element count (`shape`), marched together: the
+    /// march is a chain of dependent operations per strip, so two independent chains take
+    /// little longer than one. Each strip's arithmetic is exactly that of [`StripMarch::run`].
+    pub(crate) fn run_two(
+        marches: [&StripMarch; 2],
+        step_x: [f64; 2],
+        shape: &[f64],
+        out: &mut [StripOut<'_>; 2],
+    ) -> [StripSums; 2] {
+        let n = shape.len();
+        for o in out.iter() {
+            assert!(o.px.len() == n && o.py.len() == n && o.slipping.len() == n);
+        }
+        let mut sums = [StripSums {
+            n_contact: n,
+            ..StripSums::default()
+        }; 2];
+        let mut px = [0.0_f64; 2];
+        let mut py = [0.0_f64; 2];
+        let mut fraction = [marches[0].lead_fraction, marches[1].lead_fraction];
+        for (i, &shape_factor) in shape.iter().enumerate().rev() {
+            for lane in 0..2 {
+                let m = marches[lane];
+                let f = fraction[lane];
+                fraction[lane] = 1.0;
+                let (x, step_y, bound) = m.element(i, f, shape_factor);
+                let p = (&mut px[lane], &mut py[lane]);
+                let step = (f * step_x[lane], step_y);
+                m.step(p, step, bound, x, i, &mut sums[lane], &mut out[lane]);
+            }
+        }
+        sums
+    }
+
+    /// Element `i` of a step of `f` × Δx with bound shape `shape_factor`: its centre x, the y
+    /// increment of the step and the traction bound.
+    #[inline(always)]
+    fn element(&self, i: usize, f: f64, shape_factor: f64) -> (f64, f64, f64) {
+        let x = self.x_first + i as f64 * self.dx;
+        let step_y = f * (self.step_y_at_zero + self.step_y_per_x * (x + f * self.spin_offset));
+        (x, step_y, self.bound_scale * shape_factor)
+    }
+
+    /// One element of the march: the traction `p` after the rigid-slip increment `step`
+    /// (x, y) [Pa], bounded by `bound`; writes element `i` of `out` and adds to `sums`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn step(
+        &self,
+        (px, py): (&mut f64, &mut f64),
+        (step_x, step_y): (f64, f64),
+        bound: f64,
+        x: f64,
+        i: usize,
+        s: &mut StripSums,
+        o: &mut StripOut<'_>,
+    ) {
+        let [lx, ly] = self.slip_flexibility;
+        // Adhesion trial.
+        let trial_x = *px - step_x;
+        let trial_y = *py - step_y;
+        let trial_sq = trial_x * trial_x + trial_y * trial_y;
+        let slipping = trial_sq > bound * bound;
+        if slipping {
+            // Scale back onto the bound, direction kept; slip displacement S = L (p − p*).
+            let f = bound / trial_sq.sqrt();
+            *px = trial_x * f;
+            *py = trial_y * f;
+            let sx = lx * (*px - trial_x);
+            let sy = ly * (*py - trial_y);
+            s.sum_power += bound * (sx * sx + sy * sy).sqrt();
+        } else {
+            *px = trial_x;
+            *py = trial_y;
+            s.n_adhesion += 1;
+        }
+        o.px[i] = *px;
+        o.py[i] = *py;
+        o.slipping[i] = slipping;
+        s.sum_px += *px;
+        s.sum_py += *py;
+        s.sum_x_py += x * *py;
+        s.max_traction_sq = s.max_traction_sq.max(*px * *px + *py * *py);
     }
 }
 
 /// The element range `range` (within a row) of rows `lo` < `hi` of a row-major buffer with rows
 /// of length `nx`, as two disjoint mutable slices.
-fn two_rows_mut<T>(
+pub(crate) fn two_rows_mut<T>(
     buf: &mut [T],
     nx: usize,
     lo: usize,

@@ -137,7 +137,9 @@ fn interpolate_in_nu(values: [f64; 3], nu: f64) -> f64 {
 /// Linear interpolation between table rows at g ∈ [0.1, 1]; returns the three ν columns.
 fn interpolate_rows(table: &[TableRow; 10], g: f64) -> TableRow {
     let pos = ((g - TABLE_MIN_G) / TABLE_STEP).clamp(0.0, 9.0);
-    let i = (pos.floor() as usize).min(8);
+    // `as usize` floors a non-negative value (and saturates below 0) without a call to
+    // libm's floor, which baseline x86-64 (no SSE4.1 rounding) would need.
+    let i = (pos as usize).min(8);
     let t = pos - i as f64;
     let (lo, hi) = (&table[i], &table[i + 1]);
     let lerp = |a: [f64; 3], b: [f64; 3]| {

@@ -334,7 +334,9 @@ impl RemainderTable {
     /// Cubic (Lagrange) interpolation of `values` at t ∈ [TABLE_T_MIN, TABLE_T_MAX].
     fn at(values: &[f64], t: f64) -> f64 {
         let x = (t / TABLE_T_MIN).ln() / TABLE_DU;
-        let k = (x.floor() as usize).clamp(1, values.len() - 3);
+        // `as usize` floors a non-negative value (and saturates below 0) without a call to
+        // libm's floor, which baseline x86-64 (no SSE4.1 rounding) would need.
+        let k = (x as usize).clamp(1, values.len() - 3);
         let w = crate::strips::cubic_lagrange_weights(x - k as f64);
         w[0] * values[k - 1] + w[1] * values[k] + w[2] * values[k + 1] + w[3] * values[k + 2]
     }
@@ -399,7 +401,9 @@ fn linear_at_if(values: &[f64], n: usize, t: f64, usable: impl Fn(f64) -> bool) 
         return None;
     }
     let t = t.clamp(0.0, (n - 1) as f64);
-    let lo = (t.floor() as usize).min(n - 1);
+    // `as usize` floors a non-negative value (and saturates below 0) without a call to
+    // libm's floor, which baseline x86-64 (no SSE4.1 rounding) would need.
+    let lo = (t as usize).min(n - 1);
     let hi = (lo + 1).min(n - 1);
     let w = t - lo as f64;
     let v = values[lo] * (1.0 - w) + values[hi] * w;

@@ -59,7 +59,7 @@
 
 use crate::error::InputError;
 use crate::fastrip::semi_ellipse_midpoint_ratio;
-use crate::fastsim::{Creepage, MarchScheme, StripMarch, StripOut};
+use crate::fastsim::{two_rows_mut, Creepage, MarchScheme, StripMarch, StripOut, StripSums};
 use crate::strips::MAX_STRIPS;
 
 /// Largest element count per strip (the FMU's `nx` range).
@@ -149,6 +149,8 @@ pub struct StripFastsim {
     slipping: Vec<bool>,
     /// Strip geometry of the last solve (for [`StripFastsim::tractions`]).
     geometry: Vec<(f64, f64, f64)>,
+    /// Per-strip sums of the last solve.
+    totals: Vec<StripTotals>,
     n_strips: usize,
     /// The bound's shape √(1 − u_i²) at the element centres u_i ∈ (−1, 1), the same for every
     /// strip (precomputed: no square root per element in the march).
@@ -186,6 +188,7 @@ impl StripFastsim {
             py: vec![0.0; MAX_STRIPS * nx],
             slipping: vec![false; MAX_STRIPS * nx],
             geometry: vec![(0.0, 0.0, 0.0); MAX_STRIPS],
+            totals: vec![StripTotals::default(); MAX_STRIPS],
             n_strips: 0,
             shape: bound_shape(nx, midpoint_ratio),
             midpoint_ratio,
@@ -197,12 +200,11 @@ impl StripFastsim {
     /// Strips with non-finite or non-positive flexibilities carry no traction. No allocation.
     pub fn solve(&mut self, strips: &[TangentialStrip], mu: f64, speed: f64) -> StripFastsimResult {
         let nx = self.nx;
-        // Moved out for the closure (run borrows the buffers); put back below. No allocation.
-        let shape = std::mem::take(&mut self.shape);
+        let n = self.clear(strips);
         let spin_offset_fraction = self.scheme.spin_offset_fraction();
         // The elements tile the strip: the leading centre lies Δx/2 behind its edge.
         let lead = self.scheme.lead_fraction(0.5);
-        let result = self.run(strips, speed, |strip, px_row, py_row, slip_row| {
+        let march_of = |strip: &TangentialStrip| {
             let [l1, l2, l3] = strip.flexibility;
             let usable = |v: f64| v.is_finite() && v > 0.0;
             if !(usable(strip.half_length)
@@ -227,14 +229,11 @@ impl StripFastsim {
                 slip_flexibility: [l1, l2],
             };
             let step_x = (k.xi / l1 - strip.reference_spin * strip.lever / l3) * dx;
-            let mut out = [StripOut {
-                px: px_row,
-                py: py_row,
-                slipping: slip_row,
-            }];
-            let [sums] = march.run([step_x], &shape, &mut out);
-            let area = dx * strip.width;
-            let t = StripTotals {
+            Some((march, step_x))
+        };
+        let totals = |strip: &TangentialStrip, march: &StripMarch, sums: &StripSums| {
+            let area = march.dx * strip.width;
+            StripTotals {
                 fx: sums.sum_px * area,
                 fy: sums.sum_py * area,
                 x_fy: sums.sum_x_py * area,
@@ -242,11 +241,52 @@ impl StripFastsim {
                 max_traction: sums.max_traction_sq.sqrt(),
                 n_elements: nx,
                 n_adhesion: sums.n_adhesion,
+            }
+        };
+        // Strips in contact marched two at a time (`StripMarch::run_two`: two independent
+        // chains); an odd one alone.
+        let mut waiting: Option<(usize, StripMarch, f64)> = None;
+        for j in 0..n {
+            let Some((march, step_x)) = march_of(&strips[j]) else {
+                continue;
             };
-            Some(t)
-        });
-        self.shape = shape;
-        result
+            let Some((i, first, first_step)) = waiting.take() else {
+                waiting = Some((j, march, step_x));
+                continue;
+            };
+            let (rows_x, rows_y, rows_slip) = (&mut self.px, &mut self.py, &mut self.slipping);
+            let (px_i, px_j) = two_rows_mut(rows_x, nx, i, j, 0..nx);
+            let (py_i, py_j) = two_rows_mut(rows_y, nx, i, j, 0..nx);
+            let (slip_i, slip_j) = two_rows_mut(rows_slip, nx, i, j, 0..nx);
+            let mut out = [
+                StripOut {
+                    px: px_i,
+                    py: py_i,
+                    slipping: slip_i,
+                },
+                StripOut {
+                    px: px_j,
+                    py: py_j,
+                    slipping: slip_j,
+                },
+            ];
+            let marches = [&first, &march];
+            let [s_i, s_j] =
+                StripMarch::run_two(marches, [first_step, step_x], &self.shape, &mut out);
+            self.totals[i] = totals(&strips[i], &first, &s_i);
+            self.totals[j] = totals(&strips[j], &march, &s_j);
+        }
+        if let Some((i, march, step_x)) = waiting {
+            let row = i * nx..(i + 1) * nx;
+            let mut out = [StripOut {
+                px: &mut self.px[row.clone()],
+                py: &mut self.py[row.clone()],
+                slipping: &mut self.slipping[row],
+            }];
+            let [sums] = march.run([step_x], &self.shape, &mut out);
+            self.totals[i] = totals(&strips[i], &march, &sums);
+        }
+        self.summarize(strips, speed)
     }
 
     /// FaStrip (`crate::fastrip`, Sichani et al. 2016) on the same strips: the strip-theory
@@ -322,25 +362,46 @@ impl StripFastsim {
             &mut [bool],
         ) -> Option<StripTotals>,
     ) -> StripFastsimResult {
-        let n = strips.len().min(MAX_STRIPS);
-        self.n_strips = n;
+        let n = self.clear(strips);
         let nx = self.nx;
-        let mut out = StripFastsimResult::default();
-        let (mut n_contact, mut n_adhesion) = (0usize, 0usize);
-        let mut power = 0.0;
         for (j, strip) in strips[..n].iter().enumerate() {
-            self.geometry[j] = (strip.x_c, strip.half_length, strip.pmax);
             let row = j * nx..(j + 1) * nx;
-            self.px[row.clone()].fill(0.0);
-            self.py[row.clone()].fill(0.0);
-            self.slipping[row.clone()].fill(false);
-            let t = solve_one(
+            if let Some(t) = solve_one(
                 strip,
                 &mut self.px[row.clone()],
                 &mut self.py[row.clone()],
                 &mut self.slipping[row],
-            )
-            .unwrap_or_default();
+            ) {
+                self.totals[j] = t;
+            }
+        }
+        self.summarize(strips, speed)
+    }
+
+    /// Takes the geometry of `strips` (at most [`MAX_STRIPS`]: returns how many) and clears
+    /// their element rows and totals.
+    fn clear(&mut self, strips: &[TangentialStrip]) -> usize {
+        let n = strips.len().min(MAX_STRIPS);
+        self.n_strips = n;
+        let nx = self.nx;
+        for (j, strip) in strips[..n].iter().enumerate() {
+            self.geometry[j] = (strip.x_c, strip.half_length, strip.pmax);
+        }
+        self.px[..n * nx].fill(0.0);
+        self.py[..n * nx].fill(0.0);
+        self.slipping[..n * nx].fill(false);
+        self.totals[..n].fill(StripTotals::default());
+        n
+    }
+
+    /// The patch's sums over the strips' totals (in strip order), stored per strip as well.
+    fn summarize(&mut self, strips: &[TangentialStrip], speed: f64) -> StripFastsimResult {
+        let n = self.n_strips;
+        let mut out = StripFastsimResult::default();
+        let (mut n_contact, mut n_adhesion) = (0usize, 0usize);
+        let mut power = 0.0;
+        for (j, strip) in strips[..n].iter().enumerate() {
+            let t = self.totals[j];
             self.strip_fx[j] = t.fx;
             self.strip_fy[j] = t.fy;
             out.fx += t.fx;

@@ -509,7 +509,9 @@ impl HertzShapeTable {
         let u = u.clamp(-SHAPE_TABLE_RANGE, SHAPE_TABLE_RANGE);
         let t = (u + SHAPE_TABLE_RANGE) / SHAPE_TABLE_STEP;
         // Interval [k, k+1] with neighbours k−1 and k+2 inside the table.
-        let k = (t.floor() as usize).clamp(1, SHAPE_TABLE_NODES - 3);
+        // `as usize` floors a non-negative value (and saturates below 0) without a call to
+        // libm's floor, which baseline x86-64 (no SSE4.1 rounding) would need.
+        let k = (t as usize).clamp(1, SHAPE_TABLE_NODES - 3);
         let w = cubic_lagrange_weights(t - k as f64);
         let mut v = [0.0; 3];
         for (j, wj) in w.iter().enumerate() {

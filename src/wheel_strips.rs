@@ -108,7 +108,9 @@ impl StripPatch {
             return values[0];
         }
         let t = ((s - g.s[0]) / g.ds).clamp(0.0, (g.n - 1) as f64);
-        let i = (t.floor() as usize).min(g.n - 2);
+        // `as usize` floors a non-negative value (and saturates below 0) without a call to
+        // libm's floor, which baseline x86-64 (no SSE4.1 rounding) would need.
+        let i = (t as usize).min(g.n - 2);
         let u = t - i as f64;
         values[i] + (values[i + 1] - values[i]) * u
     }
