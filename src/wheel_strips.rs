@@ -121,6 +121,9 @@ pub struct StripSide {
     patches: Vec<StripPatch>,
     spare: Vec<StripPatch>,
     count: usize,
+    /// The approach beyond first touch at which the first layout carried the load in the last
+    /// [`StripSide::solve`] [m] (0 without a load).
+    layout_approach: f64,
 }
 
 /// Settings of the strip solve.
@@ -250,7 +253,14 @@ impl StripSide {
             patches: make()?,
             spare: make()?,
             count: 0,
+            layout_approach: 0.0,
         })
+    }
+
+    /// See the field: the warm start of the next step's first trial (`ratio_hint` of
+    /// [`StripSide::solve`]).
+    pub fn layout_approach(&self) -> f64 {
+        self.layout_approach
     }
 
     pub fn patches(&self) -> &[StripPatch] {
@@ -374,7 +384,11 @@ impl StripSide {
     /// that carries the load approximately (Hertz) or the prescribed one. The strips are laid out
     /// for `target`; the final patches are then balanced against `final_target` if given (the
     /// load less the creep forces' vertical component: one iteration instead of balancing to
-    /// `target` and re-balancing). Returns the lowering.
+    /// `target` and re-balancing). The first layout's load iteration starts at `ratio_hint`
+    /// (within [½, 2]) × the Hertz approach: the previous step's [`StripSide::layout_approach`]
+    /// over its Hertz approach, a warm start that changes the balanced lowering only within the
+    /// iteration's tolerance (the layout itself follows from the Hertz approach alone). Returns
+    /// the lowering.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
@@ -385,9 +399,11 @@ impl StripSide {
         final_target: Option<f64>,
         touch: f64,
         dz_hint: f64,
+        ratio_hint: f64,
     ) -> f64 {
         let params = settings.params;
         let approach = (dz_hint - touch).max(0.0);
+        let first_trial = approach * ratio_hint.clamp(0.5, 2.0);
         // The first layout, meant to be final: `settings.strips` over each region at
         // RANGE_FACTOR × the Hertz approach (or at the prescribed lowering).
         let dz_range = match target {
@@ -402,9 +418,10 @@ impl StripSide {
             table,
             target,
             touch,
-            approach,
+            first_trial,
             dz_hint,
         );
+        self.layout_approach = if target.is_some() { dz - touch } else { 0.0 };
         match self.verdict() {
             Verdict::Accept => {
                 // Only a different final target needs a new balance.

@@ -306,6 +306,10 @@ pub struct WarmStart {
     /// cold start).
     pub approach_step: f64,
     pub creep_step: f64,
+    /// Strip models: the approach at which their first layout carried the load, over
+    /// `approach` [-] (the first trial of the next step's iteration is `approach` times this;
+    /// 1 for the multi-Hertzian solution).
+    pub strip_ratio: f64,
 }
 
 impl WarmStart {
@@ -318,8 +322,9 @@ impl WarmStart {
         (approach, self.creep + self.creep_step)
     }
 
-    /// The warm start after a step that found `approach` and `creep`, following `previous`.
-    fn after(previous: Option<WarmStart>, approach: f64, creep: f64) -> Self {
+    /// The warm start after a step that found `approach`, `creep` and `strip_ratio`, following
+    /// `previous`.
+    fn after(previous: Option<WarmStart>, approach: f64, creep: f64, strip_ratio: f64) -> Self {
         let (approach_step, creep_step) =
             previous.map_or((0.0, 0.0), |p| (approach - p.approach, creep - p.creep));
         Self {
@@ -327,6 +332,7 @@ impl WarmStart {
             creep,
             approach_step,
             creep_step,
+            strip_ratio,
         }
     }
 }
@@ -985,6 +991,7 @@ fn creep_upward(out: &SideResult) -> f64 {
 /// the Hertz solution's lowering or the warm start's, is the starting guess, and `creep` the
 /// first estimate of the creep forces' vertical component) or the lowering `out.z`. Returns the
 /// last evaluated creep component (prescribed load only).
+#[allow(clippy::too_many_arguments)]
 fn solve_strips(
     side: &mut Side,
     ctx: &Context,
@@ -992,6 +999,7 @@ fn solve_strips(
     load: Option<f64>,
     touch: f64,
     creep: f64,
+    ratio_hint: f64,
     out: &mut SideResult,
 ) -> Result<Option<f64>, WheelsetError> {
     if side.strips.is_none() {
@@ -1016,6 +1024,7 @@ fn solve_strips(
                 target,
                 touch,
                 dz,
+                ratio_hint,
             ),
         };
         side.strips = Some(strips);
@@ -1091,14 +1100,20 @@ fn solve_side(
     // Hertz solution and the creep iteration.
     let mut creep = hertz_side(side, ctx, input, load, z, touch, warm, out, !strip_model)?;
     let approach = out.z - touch;
+    let mut strip_ratio = 1.0;
     if strip_model && load != Some(0.0) {
         let start = warm.map_or(0.0, |w| w.predicted().1);
-        creep = solve_strips(side, ctx, input, load, touch, start, out)?;
+        let ratio_hint = warm.map_or(1.0, |w| w.strip_ratio);
+        creep = solve_strips(side, ctx, input, load, touch, start, ratio_hint, out)?;
+        let layout_approach = side.strips.as_ref().map_or(0.0, |s| s.layout_approach());
+        if approach > 0.0 && layout_approach > 0.0 {
+            strip_ratio = layout_approach / approach;
+        }
     }
     check_balance(side.name, load, out)?;
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)
-        .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0)));
+        .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratio));
     Ok(())
 }
 
