@@ -413,14 +413,7 @@ impl StripMarch {
         shape: &[f64],
         out: &mut [StripOut<'_>; LANES],
     ) -> [StripSums; LANES] {
-        let n = shape.len();
-        for o in out.iter() {
-            assert!(o.px.len() == n && o.py.len() == n && o.slipping.len() == n);
-        }
-        let mut sums = [StripSums {
-            n_contact: n,
-            ..StripSums::default()
-        }; LANES];
+        let mut sums = Self::start_sums(shape, out);
         let mut px = [0.0_f64; LANES];
         let mut py = [0.0_f64; LANES];
         // The leading element's step is `lead_fraction` of a full one, all later steps full.
@@ -447,14 +440,7 @@ impl StripMarch {
         shape: &[f64],
         out: &mut [StripOut<'_>; 2],
     ) -> [StripSums; 2] {
-        let n = shape.len();
-        for o in out.iter() {
-            assert!(o.px.len() == n && o.py.len() == n && o.slipping.len() == n);
-        }
-        let mut sums = [StripSums {
-            n_contact: n,
-            ..StripSums::default()
-        }; 2];
+        let mut sums = Self::start_sums(shape, out);
         let mut px = [0.0_f64; 2];
         let mut py = [0.0_f64; 2];
         let mut fraction = [marches[0].lead_fraction, marches[1].lead_fraction];
@@ -470,6 +456,20 @@ impl StripMarch {
             }
         }
         sums
+    }
+
+    /// The sums before a march over the elements of `shape` into `out` (whose slices must
+    /// hold one entry per element).
+    #[inline(always)]
+    fn start_sums<const K: usize>(shape: &[f64], out: &[StripOut<'_>; K]) -> [StripSums; K] {
+        let n = shape.len();
+        for o in out.iter() {
+            assert!(o.px.len() == n && o.py.len() == n && o.slipping.len() == n);
+        }
+        [StripSums {
+            n_contact: n,
+            ..StripSums::default()
+        }; K]
     }
 
     /// Element `i` of a step of `f` × Δx with bound shape `shape_factor`: its centre x, the y

@@ -424,13 +424,10 @@ impl StripSide {
         self.layout_approach = if target.is_some() { dz - touch } else { 0.0 };
         match self.verdict() {
             Verdict::Accept => {
-                // Only a different final target needs a new balance.
-                return match (final_target, target) {
-                    (Some(q), Some(t)) if q != t => {
-                        self.iterate(q, touch, dz - touch, &params, table)
-                    }
-                    _ => dz,
-                };
+                // Solved already, unless the final target differs from the layout's.
+                if target.is_none() || final_target.is_none_or(|q| Some(q) == target) {
+                    return dz;
+                }
             }
             Verdict::Restrip => {
                 self.restrip(geometry, settings, table);
@@ -457,14 +454,16 @@ impl StripSide {
                 }
             }
         }
-        // The re-striped patches are solved afresh.
-        match final_target.or(target) {
-            Some(q) => self.iterate(q, touch, dz - touch, &params, table),
-            None => {
-                self.vertical_force(dz, &params, table);
-                dz
-            }
-        }
+        // The final patches (re-striped, or the first ones for a different target) solved
+        // afresh.
+        self.solve_at(
+            final_target.or(target),
+            touch,
+            dz - touch,
+            dz,
+            &params,
+            table,
+        )
     }
 
     /// Lays out `strips` strips per region at `dz_range` and solves them for `target` (first
@@ -483,11 +482,25 @@ impl StripSide {
         dz_hint: f64,
     ) -> f64 {
         self.build_from_regions(geometry, dz_range, strips, settings, table);
+        self.solve_at(target, touch, approach, dz_hint, &settings.params, table)
+    }
+
+    /// The current patches balanced to the vertical force `target` (first trial at `approach`
+    /// beyond `touch`) or, without one, solved at the lowering `dz`. Returns the lowering.
+    fn solve_at(
+        &mut self,
+        target: Option<f64>,
+        touch: f64,
+        approach: f64,
+        dz: f64,
+        params: &NormalParams,
+        table: &HertzShapeTable,
+    ) -> f64 {
         match target {
-            Some(q) => self.iterate(q, touch, approach, &settings.params, table),
+            Some(q) => self.iterate(q, touch, approach, params, table),
             None => {
-                self.vertical_force(dz_hint, &settings.params, table);
-                dz_hint
+                self.vertical_force(dz, params, table);
+                dz
             }
         }
     }
