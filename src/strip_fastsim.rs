@@ -59,7 +59,7 @@
 
 use crate::error::InputError;
 use crate::fastrip::semi_ellipse_midpoint_ratio;
-use crate::fastsim::{two_rows_mut, Creepage, MarchScheme, StripMarch, StripOut, StripSums};
+use crate::fastsim::{Creepage, MarchScheme, StripMarch, StripOut, StripSums};
 use crate::strips::MAX_STRIPS;
 
 /// Largest element count per strip (the FMU's `nx` range).
@@ -243,47 +243,32 @@ impl StripFastsim {
                 n_adhesion: sums.n_adhesion,
             }
         };
-        // Strips in contact marched two at a time (`StripMarch::run_two`: two independent
-        // chains); an odd one alone.
-        let mut waiting: Option<(usize, StripMarch, f64)> = None;
-        for j in 0..n {
-            let Some((march, step_x)) = march_of(&strips[j]) else {
-                continue;
-            };
-            let Some((i, first, first_step)) = waiting.take() else {
-                waiting = Some((j, march, step_x));
-                continue;
-            };
-            let (rows_x, rows_y, rows_slip) = (&mut self.px, &mut self.py, &mut self.slipping);
-            let (px_i, px_j) = two_rows_mut(rows_x, nx, i, j, 0..nx);
-            let (py_i, py_j) = two_rows_mut(rows_y, nx, i, j, 0..nx);
-            let (slip_i, slip_j) = two_rows_mut(rows_slip, nx, i, j, 0..nx);
-            let mut out = [
-                StripOut {
-                    px: px_i,
-                    py: py_i,
-                    slipping: slip_i,
-                },
-                StripOut {
-                    px: px_j,
-                    py: py_j,
-                    slipping: slip_j,
-                },
-            ];
-            let marches = [&first, &march];
-            let [s_i, s_j] =
-                StripMarch::run_two(marches, [first_step, step_x], &self.shape, &mut out);
-            self.totals[i] = totals(&strips[i], &first, &s_i);
-            self.totals[j] = totals(&strips[j], &march, &s_j);
+        // Strips in contact marched four at a time (`StripMarch::run_pairs`: independent
+        // chains in packed lanes), the rest two at a time and an odd one alone.
+        let mut group = [(0usize, StripMarch::default(), 0.0); 4];
+        let mut waiting = 0;
+        for (j, strip) in strips[..n].iter().enumerate() {
+            if let Some((march, step_x)) = march_of(strip) {
+                group[waiting] = (j, march, step_x);
+                waiting += 1;
+            }
+            if waiting == 4 {
+                self.march_group::<2>(&group, strips, &totals);
+                waiting = 0;
+            }
         }
-        if let Some((i, march, step_x)) = waiting {
+        if waiting >= 2 {
+            self.march_group::<1>(&group[..2], strips, &totals);
+        }
+        if waiting % 2 == 1 {
+            let (i, march, step_x) = group[waiting - 1];
             let row = i * nx..(i + 1) * nx;
-            let mut out = [StripOut {
+            let mut out = StripOut {
                 px: &mut self.px[row.clone()],
                 py: &mut self.py[row.clone()],
                 slipping: &mut self.slipping[row],
-            }];
-            let [sums] = march.run([step_x], &self.shape, &mut out);
+            };
+            let sums = march.run(step_x, &self.shape, &mut out);
             self.totals[i] = totals(&strips[i], &march, &sums);
         }
         self.summarize(strips, speed)
@@ -347,6 +332,43 @@ impl StripFastsim {
                 n_adhesion: sums.n_adhesion,
             })
         })
+    }
+
+    /// Marches the `2P` strips of `group` (strip index, march, x step) in `P` packed pairs
+    /// and stores their totals.
+    fn march_group<const P: usize>(
+        &mut self,
+        group: &[(usize, StripMarch, f64)],
+        strips: &[TangentialStrip],
+        totals: &impl Fn(&TangentialStrip, &StripMarch, &StripSums) -> StripTotals,
+    ) {
+        let nx = self.nx;
+        let rows: [[std::ops::Range<usize>; 2]; P] = std::array::from_fn(|k| {
+            [0, 1].map(|lane| {
+                let j = group[2 * k + lane].0;
+                j * nx..(j + 1) * nx
+            })
+        });
+        let flat = || rows.iter().flatten().cloned();
+        let mut px = disjoint_rows(&mut self.px, flat());
+        let mut py = disjoint_rows(&mut self.py, flat());
+        let mut slipping = disjoint_rows(&mut self.slipping, flat());
+        let mut out: [[StripOut<'_>; 2]; P] = std::array::from_fn(|_| {
+            [0, 1].map(|_| StripOut {
+                px: px.next().expect("one row per strip"),
+                py: py.next().expect("one row per strip"),
+                slipping: slipping.next().expect("one row per strip"),
+            })
+        });
+        let marches = std::array::from_fn(|k| [&group[2 * k].1, &group[2 * k + 1].1]);
+        let step_x = std::array::from_fn(|k| [group[2 * k].2, group[2 * k + 1].2]);
+        let sums = StripMarch::run_pairs(marches, step_x, &self.shape, &mut out);
+        for (k, pair) in sums.iter().enumerate() {
+            for (lane, s) in pair.iter().enumerate() {
+                let (j, march, _) = &group[2 * k + lane];
+                self.totals[*j] = totals(&strips[*j], march, s);
+            }
+        }
     }
 
     /// The bookkeeping shared by the solvers: clears each strip's row, lets `solve_one` fill it
@@ -459,6 +481,23 @@ impl StripFastsim {
             })
         })
     }
+}
+
+/// The rows `ranges` of `buf` as mutable slices, in order; the ranges must be disjoint and
+/// increasing (strips in index order).
+fn disjoint_rows<T>(
+    buf: &mut [T],
+    ranges: impl Iterator<Item = std::ops::Range<usize>>,
+) -> impl Iterator<Item = &mut [T]> {
+    let mut rest = buf;
+    let mut offset = 0;
+    ranges.map(move |r| {
+        let (_, tail) = std::mem::take(&mut rest).split_at_mut(r.start - offset);
+        let (row, tail) = tail.split_at_mut(r.end - r.start);
+        rest = tail;
+        offset = r.end;
+        row
+    })
 }
 
 /// Centre of element `i` of `n` equal elements on (−1, 1).
