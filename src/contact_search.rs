@@ -405,10 +405,12 @@ impl ContactPlane {
 pub struct StripPoints {
     /// Lateral coordinate of the rail point in the mounted rail frame [m].
     pub y_rail: [f64; MAX_STRIPS],
-    /// Local contact angle of the rail (positive towards the flange) [rad].
-    pub contact_angle: [f64; MAX_STRIPS],
-    /// Its sine and cosine (from the rail's slope, no trigonometry: the tangential problem
-    /// needs them per strip).
+    /// Slope dz/dw of the rail (wheelset frame) at the strip's point: the local contact angle
+    /// (positive towards the flange) is γ = −atan z' ([`StripPoints::contact_angle`]; computed
+    /// where needed, the strips themselves need only its sine and cosine).
+    pub rail_slope: [f64; MAX_STRIPS],
+    /// Sine and cosine of the contact angle (from the rail's slope, no trigonometry: the
+    /// tangential problem needs them per strip).
     pub sin_angle: [f64; MAX_STRIPS],
     pub cos_angle: [f64; MAX_STRIPS],
     /// Rolling radius of the wheel point [m].
@@ -417,11 +419,18 @@ pub struct StripPoints {
     pub lateral: [f64; MAX_STRIPS],
 }
 
+impl StripPoints {
+    /// Local contact angle γ = −atan z' of strip `j` (positive towards the flange) [rad].
+    pub fn contact_angle(&self, j: usize) -> f64 {
+        -self.rail_slope[j].atan()
+    }
+}
+
 impl Default for StripPoints {
     fn default() -> Self {
         Self {
             y_rail: [0.0; MAX_STRIPS],
-            contact_angle: [0.0; MAX_STRIPS],
+            rail_slope: [0.0; MAX_STRIPS],
             sin_angle: [0.0; MAX_STRIPS],
             cos_angle: [0.0; MAX_STRIPS],
             rolling_radius: [0.0; MAX_STRIPS],
@@ -1269,7 +1278,6 @@ impl WheelOnRail {
             let s = s_lo + (i as f64 + 0.5) * ds;
             let next = self.gap_in_plane(plane, s + ds);
             let slope = current.rail_slope;
-            let gamma = -slope.atan();
             let radius = current.radius;
             // γ = −atan z_r': cos γ = 1/√(1 + z_r'²), sin γ = −z_r' cos γ.
             let cos_gamma = 1.0 / (1.0 + slope * slope).sqrt();
@@ -1280,7 +1288,7 @@ impl WheelOnRail {
             *whole = previous.found && current.found && next.found;
             geom.x_c[i] = current.x;
             points.y_rail[i] = current.y_rail;
-            points.contact_angle[i] = gamma;
+            points.rail_slope[i] = slope;
             points.cos_angle[i] = cos_gamma;
             points.sin_angle[i] = -slope * cos_gamma;
             points.rolling_radius[i] = radius;

@@ -98,21 +98,28 @@ impl StripPatch {
     /// patch's reference point; planar patch, so the whole normal force acts along it) [rad].
     pub fn reference_angle(&self) -> f64 {
         let centroid = self.summary().s_centroid;
-        self.interpolate(&self.points.contact_angle, centroid)
+        self.interpolate_by(centroid, |j| self.points.contact_angle(j))
     }
 
     /// Linear interpolation of a per-strip quantity at in-plane coordinate `s`.
     pub fn interpolate(&self, values: &[f64], s: f64) -> f64 {
+        self.interpolate_by(s, |j| values[j])
+    }
+
+    /// [`StripPatch::interpolate`] of the per-strip quantity `value(j)`, evaluated at the (at
+    /// most two) strips the interpolation uses.
+    pub fn interpolate_by(&self, s: f64, value: impl Fn(usize) -> f64) -> f64 {
         let g = &self.geom;
         if g.n == 1 {
-            return values[0];
+            return value(0);
         }
         let t = ((s - g.s[0]) / g.ds).clamp(0.0, (g.n - 1) as f64);
         // `as usize` floors a non-negative value (and saturates below 0) without a call to
         // libm's floor, which baseline x86-64 (no SSE4.1 rounding) would need.
         let i = (t as usize).min(g.n - 2);
         let u = t - i as f64;
-        values[i] + (values[i + 1] - values[i]) * u
+        let (lo, hi) = (value(i), value(i + 1));
+        lo + (hi - lo) * u
     }
 }
 

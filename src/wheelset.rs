@@ -568,15 +568,17 @@ fn creepages_at(
     p: &ContactPoint,
     gamma: f64,
 ) -> (Creepage, f64) {
-    creepages_with(input, sigma, p, gamma.sin_cos(), input.yaw.sin_cos())
+    let arm = [p.longitudinal, p.lateral, p.rolling_radius];
+    creepages_with(input, sigma, arm, gamma.sin_cos(), input.yaw.sin_cos())
 }
 
-/// [`creepages_at`] with the contact angle's (sin γ, cos γ) and the yaw's (sin ψ, cos ψ) given
-/// (the strip loops have them at hand).
+/// [`creepages_at`] at the point (longitudinal, lateral, rolling radius) `point` [m] with the
+/// contact angle's (sin γ, cos γ) and the yaw's (sin ψ, cos ψ) given (the strip loops have them
+/// at hand).
 fn creepages_with(
     input: &WheelsetInput,
     sigma: f64,
-    p: &ContactPoint,
+    [longitudinal, lateral, rolling_radius]: [f64; 3],
     (sin_g, cos_g): (f64, f64),
     (sin_y, cos_y): (f64, f64),
 ) -> (Creepage, f64) {
@@ -590,7 +592,7 @@ fn creepages_with(
         } => {
             let v_ref = vx.abs().max(V_MIN);
             // Lever arm from the wheelset centre to the contact point, track axes.
-            let arm = [p.longitudinal, sigma * p.lateral, p.rolling_radius];
+            let arm = [longitudinal, sigma * lateral, rolling_radius];
             // Ω = yaw rate about z, minus ω about the (yawed) axle direction (0, 1, 0) rotated.
             let omega_vec = [omega * sin_y, -omega * cos_y, yaw_rate];
             let cross = [
@@ -782,18 +784,14 @@ fn evaluate_strips(
     Ok(upward)
 }
 
-/// The point of strip `j` of `patch` on the wheelset (for its creepages).
-fn strip_point(patch: &StripPatch, j: usize) -> ContactPoint {
-    ContactPoint {
-        lateral: patch.points.lateral[j],
-        longitudinal: patch.geom.x_c[j],
-        y_rail: patch.points.y_rail[j],
-        contact_angle: patch.points.contact_angle[j],
-        rolling_radius: patch.points.rolling_radius[j],
-        curv_a: patch.geom.curv_a[j],
-        curv_b: patch.geom.curv_b[j],
-        ..ContactPoint::default()
-    }
+/// The point of strip `j` of `patch` on the wheelset for its creepages: (longitudinal,
+/// lateral, rolling radius) [m] (its contact angle enters through its sine and cosine).
+fn strip_point(patch: &StripPatch, j: usize) -> [f64; 3] {
+    [
+        patch.geom.x_c[j],
+        patch.points.lateral[j],
+        patch.points.rolling_radius[j],
+    ]
 }
 
 /// The kinematics of a non-planar patch (physics.md §5.9): the rigid-body motion the strips'
@@ -835,11 +833,17 @@ impl NonPlanar {
         }
     }
 
-    /// The non-planar part of the creepages at strip point `p` (lever `lever` along e_y from the
+    /// The non-planar part of the creepages at strip point `point` ([`strip_point`]; lever `lever` along e_y from the
     /// reference point; `angle_trig` its contact angle's (sin, cos)): the strip's creepages in
     /// its own axes minus what a flat patch would give there, (ξ_ref − φ_ref·lever, η_ref, φ_ref).
-    fn increment(&self, p: &ContactPoint, lever: f64, angle_trig: (f64, f64)) -> Creepage {
-        let (here, _) = creepages_with(&self.kinematics, self.sigma, p, angle_trig, self.yaw_trig);
+    fn increment(&self, point: [f64; 3], lever: f64, angle_trig: (f64, f64)) -> Creepage {
+        let (here, _) = creepages_with(
+            &self.kinematics,
+            self.sigma,
+            point,
+            angle_trig,
+            self.yaw_trig,
+        );
         let there = &self.at_reference;
         Creepage {
             xi: here.xi - (there.xi - there.phi * lever),
@@ -865,7 +869,7 @@ fn strip_patch_result(
         lateral: at(&patch.points.lateral),
         longitudinal: at(&patch.geom.x_c),
         y_rail: at(&patch.points.y_rail),
-        contact_angle: at(&patch.points.contact_angle),
+        contact_angle: patch.interpolate_by(sc, |j| patch.points.contact_angle(j)),
         rolling_radius: at(&patch.points.rolling_radius),
         curv_a: at(&patch.geom.curv_a),
         curv_b: at(&patch.geom.curv_b),
@@ -902,7 +906,7 @@ fn strip_patch_result(
         if strip.half_length > 0.0 {
             if let Some(non_planar) = &non_planar {
                 let trig = (patch.points.sin_angle[j], patch.points.cos_angle[j]);
-                let d = non_planar.increment(&strip_point(patch, j), lever, trig);
+                let d = non_planar.increment(strip_point(patch, j), lever, trig);
                 strip.creepage = Creepage {
                     xi: creepage.xi + d.xi,
                     eta: creepage.eta + d.eta,
