@@ -391,11 +391,12 @@ impl StripSide {
     /// that carries the load approximately (Hertz) or the prescribed one. The strips are laid out
     /// for `target`; the final patches are then balanced against `final_target` if given (the
     /// load less the creep forces' vertical component: one iteration instead of balancing to
-    /// `target` and re-balancing). The first layout's load iteration starts at `ratio_hint`
+    /// `target` and re-balancing). The first layout's load iteration starts at `ratio_hints[0]`
     /// (within [½, 2]) × the Hertz approach: the previous step's [`StripSide::layout_approach`]
     /// over its Hertz approach, a warm start that changes the balanced lowering only within the
-    /// iteration's tolerance (the layout itself follows from the Hertz approach alone). Returns
-    /// the lowering.
+    /// iteration's tolerance (the layout itself follows from the Hertz approach alone); the
+    /// final patches' iteration likewise at `ratio_hints[1]` × the Hertz approach (the previous
+    /// step's final approach over its Hertz approach). Returns the lowering.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
@@ -406,11 +407,11 @@ impl StripSide {
         final_target: Option<f64>,
         touch: f64,
         dz_hint: f64,
-        ratio_hint: f64,
+        ratio_hints: [f64; 2],
     ) -> f64 {
         let params = settings.params;
         let approach = (dz_hint - touch).max(0.0);
-        let first_trial = approach * ratio_hint.clamp(0.5, 2.0);
+        let [first_trial, final_trial] = ratio_hints.map(|r| approach * r.clamp(0.5, 2.0));
         // The first layout, meant to be final: `settings.strips` over each region at
         // RANGE_FACTOR × the Hertz approach (or at the prescribed lowering).
         let dz_range = match target {
@@ -462,15 +463,14 @@ impl StripSide {
             }
         }
         // The final patches (re-striped, or the first ones for a different target) solved
-        // afresh.
-        self.solve_at(
-            final_target.or(target),
-            touch,
-            dz - touch,
-            dz,
-            &params,
-            table,
-        )
+        // afresh: a final target from its own warm start (the first layout's target, which
+        // only a re-striping gets here, from the first layout's lowering).
+        let trial = if final_target.is_some() {
+            final_trial
+        } else {
+            dz - touch
+        };
+        self.solve_at(final_target.or(target), touch, trial, dz, &params, table)
     }
 
     /// Lays out `strips` strips per region at `dz_range` and solves them for `target` (first

@@ -310,6 +310,10 @@ pub struct WarmStart {
     /// `approach` [-] (the first trial of the next step's iteration is `approach` times this;
     /// 1 for the multi-Hertzian solution).
     pub strip_ratio: f64,
+    /// Strip models: the approach at which their final patches carried the load less the creep
+    /// forces' vertical component, over `approach` [-] (the first trial of the next step's final
+    /// iteration is `approach` times this; 1 for the multi-Hertzian solution).
+    pub final_ratio: f64,
 }
 
 impl WarmStart {
@@ -322,9 +326,14 @@ impl WarmStart {
         (approach, self.creep + self.creep_step)
     }
 
-    /// The warm start after a step that found `approach`, `creep` and `strip_ratio`, following
-    /// `previous`.
-    fn after(previous: Option<WarmStart>, approach: f64, creep: f64, strip_ratio: f64) -> Self {
+    /// The warm start after a step that found `approach`, `creep` and the strip ratios
+    /// [`WarmStart::strip_ratio`] and [`WarmStart::final_ratio`], following `previous`.
+    fn after(
+        previous: Option<WarmStart>,
+        approach: f64,
+        creep: f64,
+        [strip_ratio, final_ratio]: [f64; 2],
+    ) -> Self {
         let (approach_step, creep_step) =
             previous.map_or((0.0, 0.0), |p| (approach - p.approach, creep - p.creep));
         Self {
@@ -333,6 +342,7 @@ impl WarmStart {
             approach_step,
             creep_step,
             strip_ratio,
+            final_ratio,
         }
     }
 }
@@ -1003,7 +1013,7 @@ fn solve_strips(
     load: Option<f64>,
     touch: f64,
     creep: f64,
-    ratio_hint: f64,
+    ratio_hints: [f64; 2],
     out: &mut SideResult,
 ) -> Result<Option<f64>, WheelsetError> {
     if side.strips.is_none() {
@@ -1028,7 +1038,7 @@ fn solve_strips(
                 target,
                 touch,
                 dz,
-                ratio_hint,
+                ratio_hints,
             ),
         };
         side.strips = Some(strips);
@@ -1104,20 +1114,21 @@ fn solve_side(
     // Hertz solution and the creep iteration.
     let mut creep = hertz_side(side, ctx, input, load, z, touch, warm, out, !strip_model)?;
     let approach = out.z - touch;
-    let mut strip_ratio = 1.0;
+    let mut strip_ratios = [1.0; 2];
     if strip_model && load != Some(0.0) {
         let start = warm.map_or(0.0, |w| w.predicted().1);
-        let ratio_hint = warm.map_or(1.0, |w| w.strip_ratio);
-        creep = solve_strips(side, ctx, input, load, touch, start, ratio_hint, out)?;
+        let ratio_hints = warm.map_or([1.0; 2], |w| [w.strip_ratio, w.final_ratio]);
+        creep = solve_strips(side, ctx, input, load, touch, start, ratio_hints, out)?;
         let layout_approach = side.strips.as_ref().map_or(0.0, |s| s.layout_approach());
-        if approach > 0.0 && layout_approach > 0.0 {
-            strip_ratio = layout_approach / approach;
+        let final_approach = out.z - touch;
+        if approach > 0.0 && layout_approach > 0.0 && final_approach > 0.0 {
+            strip_ratios = [layout_approach / approach, final_approach / approach];
         }
     }
     check_balance(side.name, load, out)?;
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)
-        .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratio));
+        .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratios));
     Ok(())
 }
 

@@ -438,11 +438,11 @@ impl Model for WheelRailContact {
 }
 
 /// Version of the warm-start layout in FMU states (2: with the changes over the last step; 3:
-/// with the strip models' approach ratio).
-const WARM_STATE_VERSION: u8 = 3;
+/// with the strip models' approach ratio; 4: with their final approach ratio).
+const WARM_STATE_VERSION: u8 = 4;
 /// Bytes of one wheel's warm start: presence flag, approach, creep component, their changes,
-/// the strip ratio.
-const WARM_SIDE_BYTES: usize = 1 + 5 * 8;
+/// the strip ratio, the final ratio.
+const WARM_SIDE_BYTES: usize = 1 + 6 * 8;
 
 /// Appends the warm starts in the layout of [`Model::save_state`].
 fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
@@ -455,6 +455,7 @@ fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
             approach_step: 0.0,
             creep_step: 0.0,
             strip_ratio: 1.0,
+            final_ratio: 1.0,
         });
         for v in [
             w.approach,
@@ -462,6 +463,7 @@ fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
             w.approach_step,
             w.creep_step,
             w.strip_ratio,
+            w.final_ratio,
         ] {
             out.extend_from_slice(&v.to_le_bytes());
         }
@@ -492,25 +494,28 @@ fn parse_warm_start(bytes: &[u8]) -> Result<[Option<WarmStart>; 2], String> {
         };
         let (approach, creep) = (f64_at(1), f64_at(9));
         let (approach_step, creep_step) = (f64_at(17), f64_at(25));
-        let strip_ratio = f64_at(33);
+        let (strip_ratio, final_ratio) = (f64_at(33), f64_at(41));
         let finite = [creep, approach_step, creep_step]
             .iter()
             .all(|v| v.is_finite());
         let positive = |v: f64| v > 0.0 && v.is_finite();
         *side = match chunk[0] {
             0 => None,
-            1 if positive(approach) && finite && positive(strip_ratio) => Some(WarmStart {
-                approach,
-                creep,
-                approach_step,
-                creep_step,
-                strip_ratio,
-            }),
+            1 if positive(approach) && finite && positive(strip_ratio) && positive(final_ratio) => {
+                Some(WarmStart {
+                    approach,
+                    creep,
+                    approach_step,
+                    creep_step,
+                    strip_ratio,
+                    final_ratio,
+                })
+            }
             flag => {
                 return Err(format!(
                     "FMU state: invalid warm start (flag {flag}, approach {approach} m, creep \
                      component {creep} N, their changes {approach_step} m and {creep_step} N, \
-                     strip ratio {strip_ratio})"
+                     strip ratios {strip_ratio} and {final_ratio})"
                 ))
             }
         };
@@ -538,12 +543,13 @@ mod tests {
                 approach_step: -2.5e-8,
                 creep_step: 0.75,
                 strip_ratio: 1.25,
+                final_ratio: 1.125,
             }),
         ];
         let bytes = bytes_of(warm);
         assert_eq!(parse_warm_start(&bytes), Ok(warm));
-        // Wrong length, version, flag; a non-positive or non-finite approach or strip ratio; a
-        // NaN creep or change.
+        // Wrong length, version, flag; a non-positive or non-finite approach or strip ratio
+        // (either); a NaN creep or change.
         assert!(parse_warm_start(&bytes[..bytes.len() - 1]).is_err());
         let mut v = bytes.clone();
         v[0] = 1;
@@ -551,14 +557,16 @@ mod tests {
         let mut v = bytes.clone();
         v[1] = 7;
         assert!(parse_warm_start(&v).is_err());
-        for (approach, creep, creep_step, strip_ratio) in [
-            (0.0, 0.0, 0.0, 1.0),
-            (-1e-5, 0.0, 0.0, 1.0),
-            (f64::INFINITY, 0.0, 0.0, 1.0),
-            (1e-5, f64::NAN, 0.0, 1.0),
-            (1e-5, 0.0, f64::INFINITY, 1.0),
-            (1e-5, 0.0, 0.0, 0.0),
-            (1e-5, 0.0, 0.0, f64::NAN),
+        for (approach, creep, creep_step, strip_ratio, final_ratio) in [
+            (0.0, 0.0, 0.0, 1.0, 1.0),
+            (-1e-5, 0.0, 0.0, 1.0, 1.0),
+            (f64::INFINITY, 0.0, 0.0, 1.0, 1.0),
+            (1e-5, f64::NAN, 0.0, 1.0, 1.0),
+            (1e-5, 0.0, f64::INFINITY, 1.0, 1.0),
+            (1e-5, 0.0, 0.0, 0.0, 1.0),
+            (1e-5, 0.0, 0.0, f64::NAN, 1.0),
+            (1e-5, 0.0, 0.0, 1.0, -1.0),
+            (1e-5, 0.0, 0.0, 1.0, f64::INFINITY),
         ] {
             let w = WarmStart {
                 approach,
@@ -566,6 +574,7 @@ mod tests {
                 approach_step: 0.0,
                 creep_step,
                 strip_ratio,
+                final_ratio,
             };
             let v = bytes_of([Some(w), None]);
             assert!(parse_warm_start(&v).is_err(), "{w:?}");
