@@ -200,7 +200,9 @@ impl StripFastsim {
     /// Strips with non-finite or non-positive flexibilities carry no traction. No allocation.
     pub fn solve(&mut self, strips: &[TangentialStrip], mu: f64, speed: f64) -> StripFastsimResult {
         let nx = self.nx;
-        let n = self.clear(strips);
+        // Element rows are cleared only for strips that carry nothing; the march writes every
+        // element of the others.
+        let n = self.take_geometry(strips);
         let spin_offset_fraction = self.scheme.spin_offset_fraction();
         // The elements tile the strip: the leading centre lies Δx/2 behind its edge.
         let lead = self.scheme.lead_fraction(0.5);
@@ -251,6 +253,8 @@ impl StripFastsim {
             if let Some((march, step_x)) = march_of(strip) {
                 group[waiting] = (j, march, step_x);
                 waiting += 1;
+            } else {
+                self.clear_rows(j..j + 1);
             }
             if waiting == 4 {
                 self.march_group::<2>(&group, strips, &totals);
@@ -403,17 +407,29 @@ impl StripFastsim {
     /// Takes the geometry of `strips` (at most [`MAX_STRIPS`]: returns how many) and clears
     /// their element rows and totals.
     fn clear(&mut self, strips: &[TangentialStrip]) -> usize {
+        let n = self.take_geometry(strips);
+        self.clear_rows(0..n);
+        n
+    }
+
+    /// Takes the geometry of `strips` (at most [`MAX_STRIPS`]: returns how many) and clears
+    /// their totals (not their element rows).
+    fn take_geometry(&mut self, strips: &[TangentialStrip]) -> usize {
         let n = strips.len().min(MAX_STRIPS);
         self.n_strips = n;
-        let nx = self.nx;
         for (j, strip) in strips[..n].iter().enumerate() {
             self.geometry[j] = (strip.x_c, strip.half_length, strip.pmax);
         }
-        self.px[..n * nx].fill(0.0);
-        self.py[..n * nx].fill(0.0);
-        self.slipping[..n * nx].fill(false);
         self.totals[..n].fill(StripTotals::default());
         n
+    }
+
+    /// Zeroes the element rows of the strips `rows`.
+    fn clear_rows(&mut self, rows: std::ops::Range<usize>) {
+        let elements = rows.start * self.nx..rows.end * self.nx;
+        self.px[elements.clone()].fill(0.0);
+        self.py[elements.clone()].fill(0.0);
+        self.slipping[elements].fill(false);
     }
 
     /// The patch's sums over the strips' totals (in strip order), stored per strip as well.
