@@ -59,7 +59,7 @@
 
 use crate::error::InputError;
 use crate::fastrip::semi_ellipse_midpoint_ratio;
-use crate::fastsim::{Creepage, MarchScheme, StripMarch, StripOut, StripSums};
+use crate::fastsim::{Creepage, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP};
 use crate::strips::MAX_STRIPS;
 
 /// Largest element count per strip (the FMU's `nx` range).
@@ -245,9 +245,9 @@ impl StripFastsim {
                 n_adhesion: sums.n_adhesion,
             }
         };
-        // Strips in contact marched four at a time (`StripMarch::run_pairs`: independent
-        // chains in packed lanes), the rest two at a time and an odd one alone.
-        let mut group = [(0usize, StripMarch::default(), 0.0); 4];
+        // Strips in contact marched in groups (`StripMarch::run_group`: independent chains in
+        // SIMD lanes) of MAX_GROUP, the rest in a group of four, one of two and alone.
+        let mut group = [(0usize, StripMarch::default(), 0.0); MAX_GROUP];
         let mut waiting = 0;
         for (j, strip) in strips[..n].iter().enumerate() {
             if let Some((march, step_x)) = march_of(strip) {
@@ -256,16 +256,20 @@ impl StripFastsim {
             } else {
                 self.clear_rows(j..j + 1);
             }
-            if waiting == 4 {
-                self.march_group::<2>(&group, strips, &totals);
+            if waiting == MAX_GROUP {
+                self.march_group(&group, strips, &totals);
                 waiting = 0;
             }
         }
-        if waiting >= 2 {
-            self.march_group::<1>(&group[..2], strips, &totals);
+        let mut done = 0;
+        for size in [4, 2] {
+            if waiting - done >= size {
+                self.march_group(&group[done..done + size], strips, &totals);
+                done += size;
+            }
         }
-        if waiting % 2 == 1 {
-            let (i, march, step_x) = group[waiting - 1];
+        if done < waiting {
+            let (i, march, step_x) = group[done];
             let row = i * nx..(i + 1) * nx;
             let mut out = StripOut {
                 px: &mut self.px[row.clone()],
@@ -338,40 +342,34 @@ impl StripFastsim {
         })
     }
 
-    /// Marches the `2P` strips of `group` (strip index, march, x step) in `P` packed pairs
-    /// and stores their totals.
-    fn march_group<const P: usize>(
+    /// Marches the strips of `group` (strip index, march, x step; 2, 4 or [`MAX_GROUP`] of
+    /// them, in increasing strip order) together and stores their totals.
+    fn march_group(
         &mut self,
         group: &[(usize, StripMarch, f64)],
         strips: &[TangentialStrip],
         totals: &impl Fn(&TangentialStrip, &StripMarch, &StripSums) -> StripTotals,
     ) {
         let nx = self.nx;
-        let rows: [[std::ops::Range<usize>; 2]; P] = std::array::from_fn(|k| {
-            [0, 1].map(|lane| {
-                let j = group[2 * k + lane].0;
-                j * nx..(j + 1) * nx
-            })
+        let rows = || group.iter().map(|&(j, ..)| j * nx..(j + 1) * nx);
+        let mut px = disjoint_rows(&mut self.px, rows());
+        let mut py = disjoint_rows(&mut self.py, rows());
+        let mut slipping = disjoint_rows(&mut self.slipping, rows());
+        let mut out: [StripOut<'_>; MAX_GROUP] = std::array::from_fn(|_| StripOut {
+            px: px.next().unwrap_or_default(),
+            py: py.next().unwrap_or_default(),
+            slipping: slipping.next().unwrap_or_default(),
         });
-        let flat = || rows.iter().flatten().cloned();
-        let mut px = disjoint_rows(&mut self.px, flat());
-        let mut py = disjoint_rows(&mut self.py, flat());
-        let mut slipping = disjoint_rows(&mut self.slipping, flat());
-        let mut out: [[StripOut<'_>; 2]; P] = std::array::from_fn(|_| {
-            [0, 1].map(|_| StripOut {
-                px: px.next().expect("one row per strip"),
-                py: py.next().expect("one row per strip"),
-                slipping: slipping.next().expect("one row per strip"),
-            })
-        });
-        let marches = std::array::from_fn(|k| [&group[2 * k].1, &group[2 * k + 1].1]);
-        let step_x = std::array::from_fn(|k| [group[2 * k].2, group[2 * k + 1].2]);
-        let sums = StripMarch::run_pairs(marches, step_x, &self.shape, &mut out);
-        for (k, pair) in sums.iter().enumerate() {
-            for (lane, s) in pair.iter().enumerate() {
-                let (j, march, _) = &group[2 * k + lane];
-                self.totals[*j] = totals(&strips[*j], march, s);
-            }
+        let n = group.len();
+        let mut marches = [&group[0].1; MAX_GROUP];
+        let mut step_x = [0.0; MAX_GROUP];
+        for (k, (_, march, step)) in group.iter().enumerate() {
+            marches[k] = march;
+            step_x[k] = *step;
+        }
+        let sums = StripMarch::run_group(&marches[..n], &step_x[..n], &self.shape, &mut out[..n]);
+        for ((j, march, _), s) in group.iter().zip(&sums) {
+            self.totals[*j] = totals(&strips[*j], march, s);
         }
     }
 
