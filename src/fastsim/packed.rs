@@ -165,7 +165,8 @@ struct Lanes<V> {
     sum_x_py: V,
     sum_power: V,
     max_sq: V,
-    n_adhesion: [usize; 4],
+    /// Adhering elements per lane, counted in f64 (exact below 2⁵³).
+    n_adhesion: V,
 }
 
 impl<V: Packed> Lanes<V> {
@@ -198,7 +199,7 @@ impl<V: Packed> Lanes<V> {
             sum_x_py: zero,
             sum_power: zero,
             max_sq: zero,
-            n_adhesion: [0; 4],
+            n_adhesion: zero,
         }
     }
 
@@ -236,12 +237,11 @@ impl<V: Packed> Lanes<V> {
         self.px.store(&mut px);
         self.py.store(&mut py);
         for (lane, o) in out.iter_mut().enumerate().take(V::LANES) {
-            let slipping = slip_bits & (1 << lane) != 0;
             o.px[i] = px[lane];
             o.py[i] = py[lane];
-            o.slipping[i] = slipping;
-            self.n_adhesion[lane] += usize::from(!slipping);
+            o.slipping[i] = slip_bits & (1 << lane) != 0;
         }
+        self.n_adhesion = self.n_adhesion.add(V::select(slip, V::splat(0.0), one));
         self.sum_px = self.sum_px.add(self.px);
         self.sum_py = self.sum_py.add(self.py);
         self.sum_x_py = self.sum_x_py.add(x.mul(self.py));
@@ -252,13 +252,14 @@ impl<V: Packed> Lanes<V> {
     /// The lanes' sums into `sums` (one per lane).
     #[inline(always)]
     unsafe fn finish(&self, sums: &mut [StripSums]) {
-        let mut columns = [[0.0; 4]; 5];
+        let mut columns = [[0.0; 4]; 6];
         for (v, c) in [
             self.sum_px,
             self.sum_py,
             self.sum_x_py,
             self.sum_power,
             self.max_sq,
+            self.n_adhesion,
         ]
         .iter()
         .zip(columns.iter_mut())
@@ -271,7 +272,7 @@ impl<V: Packed> Lanes<V> {
             s.sum_x_py = columns[2][lane];
             s.sum_power = columns[3][lane];
             s.max_traction_sq = columns[4][lane];
-            s.n_adhesion = self.n_adhesion[lane];
+            s.n_adhesion = columns[5][lane] as usize;
         }
     }
 }
