@@ -141,9 +141,10 @@ impl IntervalIndex {
         let k = (((y - self.y0) * self.inv_cell) as u32 as usize).min(cells - 1);
         let (lo, hi) = (self.first[k] as usize, self.first[k + 1] as usize);
         if hi - lo <= 1 {
-            // At most one knot inside the cell (the common case): y lies in interval lo or hi.
-            // The bracket check also covers a cell index rounded to the neighbouring cell.
-            let i = if knots[hi] <= y { hi } else { lo };
+            // At most one knot inside the cell (the common case): y lies in interval lo or hi
+            // (no knot: lo = hi, one look-up fewer on the dependency chain). The bracket check
+            // also covers a cell index rounded to the neighbouring cell.
+            let i = if hi == lo || knots[hi] > y { lo } else { hi };
             if knots[i] <= y && y < knots[i + 1] {
                 return i;
             }
