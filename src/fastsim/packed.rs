@@ -246,7 +246,9 @@ impl<V: Packed> Lanes<V> {
         self.sum_py = self.sum_py.add(self.py);
         self.sum_x_py = self.sum_x_py.add(x.mul(self.py));
         let traction_sq = self.px.mul(self.px).add(self.py.mul(self.py));
-        self.max_sq = self.max_sq.max(traction_sq);
+        // Operands in this order: a NaN traction (none arises from finite inputs) leaves the
+        // maximum as f64::max does in the scalar march (maxpd returns its second operand then).
+        self.max_sq = traction_sq.max(self.max_sq);
     }
 
     /// The lanes' sums into `sums` (one per lane).
