@@ -383,6 +383,7 @@ pub(crate) struct StripMarch {
 }
 
 /// Output slices of one strip (its contact elements only).
+#[derive(Default)]
 pub(crate) struct StripOut<'s> {
     pub px: &'s mut [f64],
     pub py: &'s mut [f64],
@@ -407,7 +408,7 @@ impl StripMarch {
     /// F3 on one strip from the leading element (last in the slices, largest x) to the trailing
     /// one; `step_x` = (ξ/L1 − φy/L3)Δx [Pa].
     pub(crate) fn run(&self, step_x: f64, shape: &[f64], out: &mut StripOut<'_>) -> StripSums {
-        let [mut sums] = Self::start_sums(shape, std::array::from_ref(out));
+        let mut sums = Self::start_sums(shape, out);
         let (mut px, mut py) = (0.0_f64, 0.0_f64);
         // The leading element's step is `lead_fraction` of a full one, all later steps full.
         let mut fraction = self.lead_fraction;
@@ -451,15 +452,13 @@ impl StripMarch {
     /// The sums before a march over the elements of `shape` into `out` (whose slices must
     /// hold one entry per element).
     #[inline(always)]
-    fn start_sums<const K: usize>(shape: &[f64], out: &[StripOut<'_>; K]) -> [StripSums; K] {
+    fn start_sums(shape: &[f64], out: &StripOut<'_>) -> StripSums {
         let n = shape.len();
-        for o in out.iter() {
-            assert!(o.px.len() == n && o.py.len() == n && o.slipping.len() == n);
-        }
-        [StripSums {
+        assert!(out.px.len() == n && out.py.len() == n && out.slipping.len() == n);
+        StripSums {
             n_contact: n,
             ..StripSums::default()
-        }; K]
+        }
     }
 
     /// Element `i` of a step of `f` × Δx with bound shape `shape_factor`: its centre x, the y
@@ -524,19 +523,33 @@ pub(crate) const MAX_GROUP: usize = packed::MAX_GROUP;
 #[cfg(not(target_arch = "x86_64"))]
 pub(crate) const MAX_GROUP: usize = 8;
 
-/// The element range `range` (within a row) of rows `lo` < `hi` of a row-major buffer with rows
-/// of length `nx`, as two disjoint mutable slices.
-pub(crate) fn two_rows_mut<T>(
-    buf: &mut [T],
-    nx: usize,
-    lo: usize,
-    hi: usize,
-    range: std::ops::Range<usize>,
-) -> (&mut [T], &mut [T]) {
-    let (below, above) = buf.split_at_mut(hi * nx);
-    let lo_row = &mut below[lo * nx..(lo + 1) * nx];
-    let hi_row = &mut above[..nx];
-    (&mut lo_row[range.clone()], &mut hi_row[range])
+/// The output slices of strips whose elements are `rows` of the row-major buffers `px`, `py`,
+/// `slipping` (disjoint ranges in increasing order, at most `N`), in that order; entries beyond
+/// `rows` are empty.
+pub(crate) fn strip_outs<'b, const N: usize>(
+    mut px: &'b mut [f64],
+    mut py: &'b mut [f64],
+    mut slipping: &'b mut [bool],
+    rows: &[std::ops::Range<usize>],
+) -> [StripOut<'b>; N] {
+    let mut out: [StripOut<'b>; N] = std::array::from_fn(|_| StripOut::default());
+    let mut offset = 0;
+    for (o, r) in out.iter_mut().zip(rows) {
+        let (skip, len) = (r.start - offset, r.end - r.start);
+        o.px = take_row(&mut px, skip, len);
+        o.py = take_row(&mut py, skip, len);
+        o.slipping = take_row(&mut slipping, skip, len);
+        offset = r.end;
+    }
+    out
+}
+
+/// The `len` entries after the first `skip` of `rest`, which keeps what follows them.
+fn take_row<'b, T>(rest: &mut &'b mut [T], skip: usize, len: usize) -> &'b mut [T] {
+    let (_, tail) = std::mem::take(rest).split_at_mut(skip);
+    let (row, tail) = tail.split_at_mut(len);
+    *rest = tail;
+    row
 }
 
 /// Overflow guard: if `creepage` would drive adhesion trials beyond [`MAX_OVERDRIVE`] times the
@@ -781,31 +794,15 @@ impl Fastsim {
             };
             let mirror = ny - 1 - j;
             let shape = &self.shape[j * nx + first..j * nx + end];
+            // The contact elements of strip j and of its mirror (j < mirror).
+            let rows = [j, mirror].map(|row| row * nx + first..row * nx + end);
+            let (px, py, slipping) = (&mut self.px, &mut self.py, &mut self.slipping);
             if mirror == j {
-                let row = j * nx + first..j * nx + end;
-                let mut out = StripOut {
-                    px: &mut self.px[row.clone()],
-                    py: &mut self.py[row.clone()],
-                    slipping: &mut self.slipping[row],
-                };
+                let [mut out] = strip_outs(px, py, slipping, &rows[..1]);
                 let s0 = m.run(step_x_at(y), shape, &mut out);
                 add(s0, y);
             } else {
-                let (px0, px1) = two_rows_mut(&mut self.px, nx, j, mirror, first..end);
-                let (py0, py1) = two_rows_mut(&mut self.py, nx, j, mirror, first..end);
-                let (sl0, sl1) = two_rows_mut(&mut self.slipping, nx, j, mirror, first..end);
-                let mut out = [
-                    StripOut {
-                        px: px0,
-                        py: py0,
-                        slipping: sl0,
-                    },
-                    StripOut {
-                        px: px1,
-                        py: py1,
-                        slipping: sl1,
-                    },
-                ];
+                let mut out: [StripOut<'_>; 2] = strip_outs(px, py, slipping, &rows);
                 let sums = StripMarch::run_group(
                     &[&m, &m],
                     &[step_x_at(y), step_x_at(-y)],

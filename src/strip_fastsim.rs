@@ -59,7 +59,9 @@
 
 use crate::error::InputError;
 use crate::fastrip::semi_ellipse_midpoint_ratio;
-use crate::fastsim::{Creepage, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP};
+use crate::fastsim::{
+    strip_outs, Creepage, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP,
+};
 use crate::strips::MAX_STRIPS;
 
 /// Largest element count per strip (the FMU's `nx` range).
@@ -271,11 +273,8 @@ impl StripFastsim {
         if done < waiting {
             let (i, march, step_x) = group[done];
             let row = i * nx..(i + 1) * nx;
-            let mut out = StripOut {
-                px: &mut self.px[row.clone()],
-                py: &mut self.py[row.clone()],
-                slipping: &mut self.slipping[row],
-            };
+            let rows = std::slice::from_ref(&row);
+            let [mut out] = strip_outs(&mut self.px, &mut self.py, &mut self.slipping, rows);
             let sums = march.run(step_x, &self.shape, &mut out);
             self.totals[i] = totals(&strips[i], &march, &sums);
         }
@@ -351,16 +350,13 @@ impl StripFastsim {
         totals: &impl Fn(&TangentialStrip, &StripMarch, &StripSums) -> StripTotals,
     ) {
         let nx = self.nx;
-        let rows = || group.iter().map(|&(j, ..)| j * nx..(j + 1) * nx);
-        let mut px = disjoint_rows(&mut self.px, rows());
-        let mut py = disjoint_rows(&mut self.py, rows());
-        let mut slipping = disjoint_rows(&mut self.slipping, rows());
-        let mut out: [StripOut<'_>; MAX_GROUP] = std::array::from_fn(|_| StripOut {
-            px: px.next().unwrap_or_default(),
-            py: py.next().unwrap_or_default(),
-            slipping: slipping.next().unwrap_or_default(),
-        });
         let n = group.len();
+        let mut rows: [std::ops::Range<usize>; MAX_GROUP] = Default::default();
+        for (r, &(j, ..)) in rows.iter_mut().zip(group) {
+            *r = j * nx..(j + 1) * nx;
+        }
+        let mut out: [StripOut<'_>; MAX_GROUP] =
+            strip_outs(&mut self.px, &mut self.py, &mut self.slipping, &rows[..n]);
         let mut marches = [&group[0].1; MAX_GROUP];
         let mut step_x = [0.0; MAX_GROUP];
         for (k, (_, march, step)) in group.iter().enumerate() {
@@ -495,23 +491,6 @@ impl StripFastsim {
             })
         })
     }
-}
-
-/// The rows `ranges` of `buf` as mutable slices, in order; the ranges must be disjoint and
-/// increasing (strips in index order).
-fn disjoint_rows<T>(
-    buf: &mut [T],
-    ranges: impl Iterator<Item = std::ops::Range<usize>>,
-) -> impl Iterator<Item = &mut [T]> {
-    let mut rest = buf;
-    let mut offset = 0;
-    ranges.map(move |r| {
-        let (_, tail) = std::mem::take(&mut rest).split_at_mut(r.start - offset);
-        let (row, tail) = tail.split_at_mut(r.end - r.start);
-        rest = tail;
-        offset = r.end;
-        row
-    })
 }
 
 /// Centre of element `i` of `n` equal elements on (−1, 1).

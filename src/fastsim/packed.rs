@@ -335,7 +335,7 @@ pub(crate) fn march(
     assert!(matches!(n, 2 | 4 | MAX_GROUP) && step_x.len() == n && out.len() == n);
     let mut sums = [StripSums::default(); MAX_GROUP];
     for (s, o) in sums.iter_mut().zip(out.iter()) {
-        *s = StripMarch::start_sums(shape, std::array::from_ref(o))[0];
+        *s = StripMarch::start_sums(shape, o);
     }
     let avx = n >= 4 && std::is_x86_feature_detected!("avx");
     let sums_out = &mut sums[..n];
