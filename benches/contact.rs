@@ -8,14 +8,10 @@ use railcontact::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use railcontact::hertz::hertz_from_approach;
 use railcontact::patch_tangential::TangentialModel;
 use railcontact::strips::NormalModel;
-use railcontact::wheelset::{
-    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
-};
+use railcontact::wheelset::{Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings};
 
 #[path = "../tests/common/mod.rs"]
 mod common;
-
-const Q: f64 = 78_500.0;
 
 fn wheelset(model: NormalModel, tangential: TangentialModel) -> Wheelset {
     wheelset_with(model, |s| s.tangential = tangential)
@@ -28,24 +24,9 @@ fn wheelset_with(model: NormalModel, adjust: impl FnOnce(&mut WheelsetSettings))
     })
 }
 
+/// The central case at lateral shift `y` (`common::central_input`).
 fn input(y: f64) -> WheelsetInput {
-    WheelsetInput {
-        y,
-        yaw: 0.0,
-        roll: 0.0,
-        vertical: Vertical::Loads { left: Q, right: Q },
-        creepages: Creepages::Kinematic {
-            vx: 30.0,
-            vy: 0.0,
-            yaw_rate: 0.0,
-            omega: 30.0 / 0.46 * (1.0 + 1e-3),
-        },
-    }
-}
-
-/// Lateral shift of the moving wheelset at step `k`: 3 mm · sin 2πt at 1 ms steps [m].
-fn moving_y(k: u64) -> f64 {
-    3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin()
+    common::central_input(y, 0.0)
 }
 
 fn bench_point(c: &mut Criterion) {
@@ -152,7 +133,8 @@ fn bench_threads(c: &mut Criterion) {
                     for (ws, out) in instances.iter_mut() {
                         scope.spawn(move || {
                             for k in 0..iters {
-                                ws.solve(black_box(&input(moving_y(k))), out).unwrap();
+                                ws.solve(black_box(&input(common::moving_y(k))), out)
+                                    .unwrap();
                             }
                         });
                     }
@@ -179,7 +161,8 @@ fn bench_moving(c: &mut Criterion) {
         group.bench_function(model.name(), |b| {
             b.iter(|| {
                 k += 1;
-                ws.solve(black_box(&input(moving_y(k))), &mut out).unwrap()
+                ws.solve(black_box(&input(common::moving_y(k))), &mut out)
+                    .unwrap()
             })
         });
     }

@@ -14,7 +14,7 @@
 //! of solves, and `moving` for the moving pose.
 
 use railcontact::strips::NormalModel;
-use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
+use railcontact::wheelset::WheelsetResult;
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -29,24 +29,13 @@ fn main() {
     let solves: usize = args.get(2).and_then(|n| n.parse().ok()).expect(usage);
     let moving = args.get(3).is_some_and(|a| a == "moving");
     let mut wheelset = common::builtin_wheelset_with(|settings| settings.normal_model = model);
-    let input = |k: usize| WheelsetInput {
-        y: if moving {
-            3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin()
+    let input = |k: usize| {
+        let y = if moving {
+            common::moving_y(k as u64)
         } else {
             0.0
-        },
-        yaw: 0.0,
-        roll: 0.0,
-        vertical: Vertical::Loads {
-            left: 78_500.0,
-            right: 78_500.0,
-        },
-        creepages: Creepages::Kinematic {
-            vx: 30.0,
-            vy: 0.0,
-            yaw_rate: 0.0,
-            omega: 30.0 / 0.46 * (1.0 + 1e-3),
-        },
+        };
+        common::central_input(y, 0.0)
     };
     let mut out = WheelsetResult::default();
     let start = std::time::Instant::now();

@@ -13,7 +13,7 @@ use railcontact::fmi::export::*;
 use railcontact::models::wheel_rail_contact::INFO;
 use railcontact::patch_tangential::TangentialModel;
 use railcontact::strips::NormalModel;
-use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
+use railcontact::wheelset::WheelsetResult;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::ffi::CString;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -54,21 +54,7 @@ fn wheelset_steps_do_not_allocate() {
                     settings.planar_patch = planar;
                 });
                 let mut out = WheelsetResult::default();
-                let input = |y| WheelsetInput {
-                    y,
-                    yaw: 0.0,
-                    roll: 0.0,
-                    vertical: Vertical::Loads {
-                        left: 78_500.0,
-                        right: 78_500.0,
-                    },
-                    creepages: Creepages::Kinematic {
-                        vx: 30.0,
-                        vy: 0.1,
-                        yaw_rate: 0.0,
-                        omega: 30.0 / 0.46 * 1.001,
-                    },
-                };
+                let input = |y| common::central_input(y, 0.1);
                 ws.solve(&input(0.0), &mut out).unwrap();
                 let before = ALLOCATIONS.load(Ordering::SeqCst);
                 for k in 0..=40 {

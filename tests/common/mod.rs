@@ -8,7 +8,7 @@ use railcontact::point_contact::Material;
 use railcontact::profile::{Profile, ProfileKind};
 use railcontact::strips::NormalModel;
 use railcontact::track::TrackSetup;
-use railcontact::wheelset::{Wheelset, WheelsetSettings};
+use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetSettings};
 
 /// `$RAILCONTACT_SHARED`, or else `../shared` next to the crate.
 pub fn shared_dir() -> PathBuf {
@@ -88,6 +88,34 @@ pub fn builtin_wheelset_with(adjust: impl FnOnce(&mut WheelsetSettings)) -> Whee
     let mut settings = WheelsetSettings::new(TrackSetup::default(), STEEL);
     adjust(&mut settings);
     Wheelset::new(&wheel, &rail, settings).expect("built-in wheelset")
+}
+
+/// The benches' central case on [`builtin_wheelset_with`]'s wheelset at lateral shift `y` [m]
+/// and lateral velocity `vy` [m/s]: 78.5 kN per wheel, kinematic creepages at 30 m/s with 0.1 %
+/// longitudinal creepage (ω = V/r₀ · 1.001, r₀ = 460 mm).
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub fn central_input(y: f64, vy: f64) -> WheelsetInput {
+    WheelsetInput {
+        y,
+        yaw: 0.0,
+        roll: 0.0,
+        vertical: Vertical::Loads {
+            left: 78_500.0,
+            right: 78_500.0,
+        },
+        creepages: Creepages::Kinematic {
+            vx: 30.0,
+            vy,
+            yaw_rate: 0.0,
+            omega: 30.0 / 0.46 * (1.0 + 1e-3),
+        },
+    }
+}
+
+/// Lateral shift of the benches' moving wheelset at step `k`: 3 mm · sin 2πt at 1 ms steps [m].
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub fn moving_y(k: u64) -> f64 {
+    3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin()
 }
 
 /// Rows of a reference CSV file of the shared data as (header → value) maps; non-numeric fields
