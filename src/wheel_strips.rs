@@ -412,15 +412,17 @@ impl StripSide {
         let params = settings.params;
         let approach = (dz_hint - touch).max(0.0);
         let [first_trial, final_trial] = ratio_hints.map(|r| approach * r.clamp(0.5, 2.0));
-        // The first layout, meant to be final: `settings.strips` over each region at
-        // RANGE_FACTOR × the Hertz approach (or at the prescribed lowering).
-        let dz_range = match target {
-            Some(_) => touch + RANGE_FACTOR * approach,
+        // The lowering whose interpenetration regions a layout covers: `factor` × `approach`
+        // beyond first touch, or the prescribed lowering.
+        let range_at = |factor: f64, approach: f64| match target {
+            Some(_) => touch + factor * approach,
             None => dz_hint,
         };
+        // The first layout, meant to be final: `settings.strips` over each region at
+        // RANGE_FACTOR × the Hertz approach.
         let mut dz = self.layout_and_solve(
             geometry,
-            dz_range,
+            range_at(RANGE_FACTOR, approach),
             settings.strips,
             settings,
             table,
@@ -445,10 +447,7 @@ impl StripSide {
                 // approach, each run re-striped; widened while a run is open.
                 let mut approach = approach;
                 for _ in 0..=RANGE_RETRIES {
-                    let dz_range = match target {
-                        Some(_) => touch + WIDE_RANGE_FACTOR * approach,
-                        None => dz_hint,
-                    };
+                    let dz_range = range_at(WIDE_RANGE_FACTOR, approach);
                     let strips = wide_layout_strips(settings.strips);
                     dz = self.layout_and_solve(
                         geometry, dz_range, strips, settings, table, target, touch, approach,

@@ -843,9 +843,10 @@ impl NonPlanar {
         }
     }
 
-    /// The non-planar part of the creepages at strip point `point` ([`strip_point`]; lever `lever` along e_y from the
-    /// reference point; `angle_trig` its contact angle's (sin, cos)): the strip's creepages in
-    /// its own axes minus what a flat patch would give there, (ξ_ref − φ_ref·lever, η_ref, φ_ref).
+    /// The non-planar part of the creepages at strip point `point` ([`strip_point`]; lever
+    /// `lever` along e_y from the reference point; `angle_trig` its contact angle's (sin, cos)):
+    /// the strip's creepages in its own axes minus what a flat patch would give there,
+    /// (ξ_ref − φ_ref·lever, η_ref, φ_ref).
     fn increment(&self, point: [f64; 3], lever: f64, angle_trig: (f64, f64)) -> Creepage {
         let (here, _) = creepages_with(
             &self.kinematics,

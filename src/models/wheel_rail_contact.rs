@@ -440,9 +440,23 @@ impl Model for WheelRailContact {
 /// Version of the warm-start layout in FMU states (2: with the changes over the last step; 3:
 /// with the strip models' approach ratio; 4: with their final approach ratio).
 const WARM_STATE_VERSION: u8 = 4;
-/// Bytes of one wheel's warm start: presence flag, approach, creep component, their changes,
-/// the strip ratio, the final ratio.
-const WARM_SIDE_BYTES: usize = 1 + 6 * 8;
+/// Values of one wheel's warm start in the layout ([`warm_fields`]).
+const WARM_FIELDS: usize = 6;
+/// Bytes of one wheel's warm start: presence flag, then its values as little-endian f64.
+const WARM_SIDE_BYTES: usize = 1 + WARM_FIELDS * 8;
+
+/// The warm start's values in the state layout's order: approach, creep component, their
+/// changes, the strip ratio, the final ratio.
+fn warm_fields(w: &WarmStart) -> [f64; WARM_FIELDS] {
+    [
+        w.approach,
+        w.creep,
+        w.approach_step,
+        w.creep_step,
+        w.strip_ratio,
+        w.final_ratio,
+    ]
+}
 
 /// Appends the warm starts in the layout of [`Model::save_state`].
 fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
@@ -457,14 +471,7 @@ fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
             strip_ratio: 1.0,
             final_ratio: 1.0,
         });
-        for v in [
-            w.approach,
-            w.creep,
-            w.approach_step,
-            w.creep_step,
-            w.strip_ratio,
-            w.final_ratio,
-        ] {
+        for v in warm_fields(&w) {
             out.extend_from_slice(&v.to_le_bytes());
         }
     }
@@ -492,9 +499,9 @@ fn parse_warm_start(bytes: &[u8]) -> Result<[Option<WarmStart>; 2], String> {
             b.copy_from_slice(&chunk[i..i + 8]);
             f64::from_le_bytes(b)
         };
-        let (approach, creep) = (f64_at(1), f64_at(9));
-        let (approach_step, creep_step) = (f64_at(17), f64_at(25));
-        let (strip_ratio, final_ratio) = (f64_at(33), f64_at(41));
+        let values: [f64; WARM_FIELDS] = std::array::from_fn(|k| f64_at(1 + 8 * k));
+        // The order of `warm_fields`.
+        let [approach, creep, approach_step, creep_step, strip_ratio, final_ratio] = values;
         let finite = [creep, approach_step, creep_step]
             .iter()
             .all(|v| v.is_finite());
