@@ -144,14 +144,16 @@ impl MountedRail {
         let (y0, y1) = rail.y_range();
         let n = (((y1 - y0) / MOUNT_SAMPLE_STEP).ceil() as usize).max(8);
         let (sin_b, cos_b) = setup.rail_inclination.sin_cos();
-        // Positive inclination tilts the head towards the track centre: the field side drops.
+        // Positive inclination leans the head towards the track centre (the standard 1:40 rail
+        // matching the wheel's cone): in the profile frame (y towards the field side, z down) the
+        // head turns so that its field side rises and its gauge side drops.
         let mut ys = Vec::with_capacity(n + 1);
         let mut zs = Vec::with_capacity(n + 1);
         for i in 0..=n {
             let y = y0 + (y1 - y0) * i as f64 / n as f64;
             let z = rail.z(y);
-            ys.push(y * cos_b - z * sin_b);
-            zs.push(y * sin_b + z * cos_b);
+            ys.push(y * cos_b + z * sin_b);
+            zs.push(-y * sin_b + z * cos_b);
         }
         let keep = monotone_run_around_top(&ys, &zs);
         let (ys, zs) = (&ys[keep.clone()], &zs[keep]);

@@ -184,7 +184,7 @@ pub struct PatchResult {
 /// Tangential traction in one element of a patch (forces of the rail on the wheel).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TractionElement {
-    /// Element centre along the rolling direction [m].
+    /// Element centre along the rolling direction, from the patch's reference point [m].
     pub x: f64,
     /// Lateral coordinate in the contact plane, towards the field side [m].
     pub s: f64,
@@ -795,10 +795,13 @@ fn evaluate_strips(
 }
 
 /// The point of strip `j` of `patch` on the wheelset for its creepages: (longitudinal,
-/// lateral, rolling radius) [m] (its contact angle enters through its sine and cosine).
-fn strip_point(patch: &StripPatch, j: usize) -> [f64; 3] {
+/// lateral, rolling radius) [m] (its contact angle enters through its sine and cosine). The
+/// longitudinal position is the patch reference point's `x_ref`, not the strip's own yaw lead:
+/// the tangential solvers measure x from the reference point and add the spin's φ_j·x along
+/// the strip themselves, so the strip's creepages must hold at x = 0 of that frame.
+fn strip_point(patch: &StripPatch, j: usize, x_ref: f64) -> [f64; 3] {
     [
-        patch.geom.x_c[j],
+        x_ref,
         patch.points.lateral[j],
         patch.points.rolling_radius[j],
     ]
@@ -902,12 +905,16 @@ fn strip_patch_result(
     let non_planar = (!settings.planar_patch)
         .then(|| NonPlanar::new(input, side.sigma, settings.setup.wheel_radius, &reference));
     let n = patch.geom.len();
+    // The strips' x is measured from the reference point (its yaw lead x_ref), where the
+    // patch's creepages hold: the spin's lateral slip φ·x is then zero there, as in Kalker's
+    // rigid slip w = (ξ − φy, η + φx) about the reference point.
+    let x_ref = reference.longitudinal;
     for j in 0..n {
         let lever = side.sigma * (patch.geom.s[j] - sc);
         let mut strip = TangentialStrip {
             lever,
             width: patch.geom.ds,
-            x_c: patch.geom.x_c[j],
+            x_c: patch.geom.x_c[j] - x_ref,
             half_length: patch.sol.half_length[j],
             pmax: patch.sol.pmax[j],
             flexibility: [0.0; 3],
@@ -917,7 +924,7 @@ fn strip_patch_result(
         if strip.half_length > 0.0 {
             if let Some(non_planar) = &non_planar {
                 let trig = (patch.points.sin_angle[j], patch.points.cos_angle[j]);
-                let d = non_planar.increment(strip_point(patch, j), lever, trig);
+                let d = non_planar.increment(strip_point(patch, j, x_ref), lever, trig);
                 strip.creepage = Creepage {
                     xi: creepage.xi + d.xi,
                     eta: creepage.eta + d.eta,
