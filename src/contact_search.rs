@@ -41,10 +41,12 @@ use crate::track::{GeometryError, MountedRail, TrackSetup};
 /// Largest number of separate contact candidates kept per wheel.
 pub const MAX_CANDIDATES: usize = 8;
 
-/// Local minima whose separating ridge is lower than this above the shallower minimum are
-/// numerical ripples of the profile splines, not separate contacts [m] (1 µm: far below the
-/// approaches of 10–100 µm that wheel loads produce).
-pub const MIN_PROMINENCE: f64 = 1e-6;
+/// Local minima whose separating ridge is lower than this above the shallower minimum are one
+/// candidate [m]: 1 nm, round-off of the gap's evaluation. Shallow ripples above it stay separate
+/// candidates; where the interpenetration submerges their ridges, the patch groups blend them
+/// continuously ([`crate::patch_groups`]), where merging them here would make the candidate jump
+/// between the ripple's minima as their depths cross.
+pub const MIN_PROMINENCE: f64 = 1e-9;
 
 /// Default sampling step of the gap function [m].
 pub const DEFAULT_SCAN_STEP: f64 = 5e-4;
@@ -230,6 +232,16 @@ pub struct Region {
     pub depth: f64,
 }
 
+/// The highest point of the gap between two neighbouring contact candidates: the ridge a
+/// wheel's interpenetration must submerge for the two minima to share one patch.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Ridge {
+    /// Lateral coordinate (wheelset frame) [m].
+    pub lateral: f64,
+    /// Vertical gap there with the wheelset at its nominal height [m].
+    pub gap: f64,
+}
+
 /// The flange tip of a wheel profile: the highest point (largest radius increase z) on the
 /// flange side (y < 0), from the profile's data points.
 fn flange_tip(wheel: &Profile) -> f64 {
@@ -319,6 +331,8 @@ pub struct WheelOnRail {
     /// sample index of each one's minimum.
     candidates: ContactCandidates,
     candidate_minima: [usize; MAX_CANDIDATES],
+    /// The ridges between neighbouring candidates of the last search ([`WheelOnRail::ridges`]).
+    ridges: [Option<Ridge>; MAX_CANDIDATES],
     /// Fine samples per coarse interval ([`COARSE_STRIDE`]; 1 samples everything at once).
     coarse_stride: usize,
     /// The coarse intervals of the last search.
@@ -327,6 +341,8 @@ pub struct WheelOnRail {
     /// span of sample indices (the coarse intervals whose bound lies below it).
     filled_level: f64,
     filled_span: (usize, usize),
+    /// The overlap of the profiles at the last search's pose (wheelset frame) [m].
+    scan_bounds: (f64, f64),
     /// Lateral coordinate of the first sample and the sample spacing of the last search [m].
     scan_lo: f64,
     scan_dw: f64,
@@ -571,6 +587,111 @@ struct PlaneGap {
     radius: f64,
 }
 
+/// Moments of a wheel's interpenetration below a level ([`WheelOnRail::depth_moments`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DepthMoments {
+    /// ∫ d dw [m²], d the depth below the level.
+    pub integral: f64,
+    /// d-weighted mean lateral (wheelset frame) [m].
+    pub mean: f64,
+    /// d-weighted variance of the lateral [m²].
+    pub variance: f64,
+}
+
+/// Coefficients (c0 + c1 t + c2 t² + c3 t³) of level − H(t) on t ∈ [0, 1], H the cubic Hermite
+/// interpolant with values `g0`, `g1` and derivatives `d0`, `d1` (per unit t) at the ends.
+fn hermite_depth(level: f64, g0: f64, g1: f64, d0: f64, d1: f64) -> [f64; 4] {
+    let c2 = 3.0 * (g1 - g0) - 2.0 * d0 - d1;
+    let c3 = 2.0 * (g0 - g1) + d0 + d1;
+    [level - g0, -d0, -c2, -c3]
+}
+
+fn cubic_at(c: &[f64; 4], t: f64) -> f64 {
+    c[0] + t * (c[1] + t * (c[2] + t * c[3]))
+}
+
+/// ∫ t^j p(t) dt over [t0, t1] for j = 0, 1, 2, p the cubic `c`.
+fn cubic_moments(c: &[f64; 4], t0: f64, t1: f64) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    for (j, o) in out.iter_mut().enumerate() {
+        // ∫ t^(j+i) c_i dt = c_i (t1^(j+i+1) − t0^(j+i+1)) / (j + i + 1).
+        for (i, ci) in c.iter().enumerate() {
+            let e = (j + i + 1) as i32;
+            *o += ci * (t1.powi(e) - t0.powi(e)) / e as f64;
+        }
+    }
+    out
+}
+
+/// ∫ t^j max(0, p(t)) dt over [t0, t1] (j = 0, 1, 2) for the cubic `c`: the interval is cut
+/// at p's critical points (the roots of p', where p turns), so that p is monotone on each piece
+/// and has at most one root there, found by bisection to 1e−13; the positive parts are
+/// integrated exactly. No root is missed, so the result is continuous in the coefficients.
+fn positive_moments(c: &[f64; 4], t0: f64, t1: f64) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    // Critical points inside (t0, t1), ascending.
+    let mut knots = [t0, t1, t1, t1];
+    let mut n = 1;
+    let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
+    let mut roots = [f64::NAN; 2];
+    if a != 0.0 {
+        let disc = b * b - 4.0 * a * cc;
+        if disc >= 0.0 {
+            let r = disc.sqrt();
+            // Cancellation-free roots of a t² + b t + c.
+            let q = -0.5 * (b + b.signum() * r);
+            roots = [q / a, if q != 0.0 { cc / q } else { f64::NAN }];
+        }
+    } else if b != 0.0 {
+        roots[0] = -cc / b;
+    }
+    if roots[0] > roots[1] {
+        roots.swap(0, 1);
+    }
+    for r in roots {
+        if r > t0 && r < t1 {
+            knots[n] = r;
+            n += 1;
+        }
+    }
+    knots[n] = t1;
+    n += 1;
+    for w in knots[..n].windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if !(b > a) {
+            continue;
+        }
+        let (pa, pb) = (cubic_at(c, a), cubic_at(c, b));
+        let (lo, hi) = match (pa > 0.0, pb > 0.0) {
+            (false, false) => continue,
+            (true, true) => (a, b),
+            (positive_a, _) => {
+                // One root in (a, b): p is monotone here.
+                let (mut x0, mut x1) = (a, b);
+                while x1 - x0 > 1e-13 {
+                    let mid = 0.5 * (x0 + x1);
+                    if (cubic_at(c, mid) > 0.0) == positive_a {
+                        x0 = mid;
+                    } else {
+                        x1 = mid;
+                    }
+                }
+                let root = 0.5 * (x0 + x1);
+                if positive_a {
+                    (a, root)
+                } else {
+                    (root, b)
+                }
+            }
+        };
+        let m = cubic_moments(c, lo, hi);
+        for j in 0..3 {
+            out[j] += m[j];
+        }
+    }
+    out
+}
+
 impl WheelOnRail {
     /// Mounts `rail` per `setup` and pairs it with `wheel`. `scan_step` [m] is the sampling
     /// step of the gap function; `b_min` [1/m] the floor of B.
@@ -614,10 +735,12 @@ impl WheelOnRail {
             samples: Vec::with_capacity(capacity),
             candidates: ContactCandidates::default(),
             candidate_minima: [0; MAX_CANDIDATES],
+            ridges: [None; MAX_CANDIDATES],
             coarse: Vec::with_capacity(capacity),
             coarse_stride: COARSE_STRIDE,
             filled_level: f64::NEG_INFINITY,
             filled_span: (usize::MAX, 0),
+            scan_bounds: (0.0, 0.0),
             scan_lo: 0.0,
             scan_dw: scan_step,
             pose: Prepared::default(),
@@ -746,6 +869,10 @@ impl WheelOnRail {
             let q1 = -2.0 * r * dz * p.sin_yaw - 2.0 * d * p.cos_yaw;
             let q2 =
                 2.0 * (dz * dz + r * d2z) * p.sin_yaw * p.sin_yaw - 2.0 * p.cos_yaw * p.cos_yaw;
+            if q1 == 0.0 {
+                // At the maximum exactly: stay (a bisection step from here would leave it).
+                break;
+            }
             if q1 > 0.0 {
                 lo = x;
             } else {
@@ -759,7 +886,7 @@ impl WheelOnRail {
             };
             let moved = (next - x).abs();
             x = next;
-            if moved <= WHEEL_NEWTON_TOLERANCE || q1 == 0.0 {
+            if moved <= WHEEL_NEWTON_TOLERANCE {
                 break;
             }
         }
@@ -1043,7 +1170,18 @@ impl WheelOnRail {
     }
 
     /// Golden-section refinement of a sampled minimum on [a, b].
-    fn golden_section(&self, mut a: f64, mut b: f64, p: &Prepared) -> (f64, GapSample) {
+    fn golden_section(&self, a: f64, b: f64, p: &Prepared) -> (f64, GapSample) {
+        self.golden_section_by(a, b, p, |g| g)
+    }
+
+    /// Golden-section search for the minimum of `key(gap)` on [a, b].
+    fn golden_section_by(
+        &self,
+        mut a: f64,
+        mut b: f64,
+        p: &Prepared,
+        key: impl Fn(f64) -> f64,
+    ) -> (f64, GapSample) {
         const INV_PHI: f64 = 0.618_033_988_749_894_8;
         let mut c = b - INV_PHI * (b - a);
         let mut d = a + INV_PHI * (b - a);
@@ -1051,7 +1189,7 @@ impl WheelOnRail {
         let mut fd = self.sample(d, p);
         // 1e−8 m is far below every contact dimension; 40 iterations shrink 1 mm below it.
         while b - a > 1e-8 {
-            if fc.gap <= fd.gap {
+            if key(fc.gap) <= key(fd.gap) {
                 b = d;
                 d = c;
                 fd = fc;
@@ -1065,11 +1203,48 @@ impl WheelOnRail {
                 fd = self.sample(d, p);
             }
         }
-        if fc.gap <= fd.gap {
+        if key(fc.gap) <= key(fd.gap) {
             (c, fc)
         } else {
             (d, fd)
         }
+    }
+
+    /// The gap's local maximum inside [a, b] (a < b, around the highest sample between two
+    /// minima): the root of its slope by the Illinois variant of regula falsi where the slopes
+    /// at the ends bracket one (+ at a, − at b), else golden-section search on the gap.
+    fn refine_ridge(&self, a: f64, b: f64, p: &Prepared) -> (f64, GapSample) {
+        let (sa, sb) = (self.sample(a, p), self.sample(b, p));
+        if sa.slope > 0.0 && sb.slope < 0.0 {
+            let ((mut a, mut slope_a), (mut b, mut slope_b)) = ((a, sa.slope), (b, sb.slope));
+            let mut w = a;
+            let mut side = 0i8;
+            for _ in 0..REFINE_STEPS {
+                let next = (a * slope_b - b * slope_a) / (slope_b - slope_a);
+                let moved = (next - w).abs();
+                w = next;
+                let s = self.sample(w, p);
+                if s.slope == 0.0 || moved < 1e-10 || b - a < 1e-10 {
+                    return (w, s);
+                }
+                if s.slope > 0.0 {
+                    (a, slope_a) = (w, s.slope);
+                    if side < 0 {
+                        slope_b *= 0.5;
+                    }
+                    side = -1;
+                } else {
+                    (b, slope_b) = (w, s.slope);
+                    if side > 0 {
+                        slope_a *= 0.5;
+                    }
+                    side = 1;
+                }
+            }
+            return (w, self.sample(w, p));
+        }
+        let (w, s) = self.golden_section_by(a, b, p, |g| -g);
+        (w, s)
     }
 
     fn describe(&self, w: f64, s: &GapSample) -> ContactPoint {
@@ -1326,8 +1501,18 @@ impl WheelOnRail {
         // `+ 0.0` turns −0 (a mirrored zero shift) into 0 for messages.
         let lateral = pose.lateral + 0.0;
         let (lo, hi) = self.overlap(&p).ok_or(SearchError::NoOverlap { lateral })?;
-        let n = ((hi - lo) / self.scan_step).ceil() as usize;
-        let step = (hi - lo) / n as f64;
+        // Samples at whole multiples of the step in the wheelset frame, whatever the overlap:
+        // a sample's position does not move with the pose, so every quantity taken from the
+        // samples (the candidates' brackets, the ridges, the reference points' integrals)
+        // changes continuously with the pose.
+        // The grid covers the overlap [lo, hi] with at most one step beyond each end (still
+        // inside both profiles: `overlap` keeps a step from their ends); the overlap itself,
+        // continuous in the pose, bounds what is integrated ([`WheelOnRail::scan_range`]).
+        let step = self.scan_step;
+        let (first_k, last_k) = ((lo / step).floor(), (hi / step).ceil());
+        let n = (last_k - first_k) as usize;
+        self.scan_bounds = (lo, hi);
+        let lo = first_k * step;
         self.scan_lo = lo;
         self.scan_dw = step;
         let mut samples = std::mem::take(&mut self.samples);
@@ -1382,6 +1567,188 @@ impl WheelOnRail {
         Ok(())
     }
 
+    /// Computes every sample (and finds every candidate and ridge) below `level` [m] (vertical
+    /// gap with the wheelset at its nominal height).
+    pub fn fill_to_level(&mut self, level: f64) {
+        self.fill_to(level);
+    }
+
+    /// The ridges of the last search: `ridges()[k]` lies between candidates k and k + 1
+    /// ([`WheelOnRail::candidates`], field side first); `None` where the gap between them rises
+    /// above the filled level ([`WheelOnRail::fill_to_level`]).
+    pub fn ridges(&self) -> &[Option<Ridge>] {
+        &self.ridges[..self.candidates.len().saturating_sub(1)]
+    }
+
+    /// Vertical gap at lateral `w` (wheelset frame) of the last search's pose [m].
+    pub fn gap_at(&self, w: f64) -> f64 {
+        self.sample(w, &self.pose).gap
+    }
+
+    /// Fractional sample index of lateral `w` (wheelset frame) [-].
+    fn index_of(&self, w: f64) -> f64 {
+        (w - self.scan_lo) / self.scan_dw
+    }
+
+    /// [`WheelOnRail::point_at`] at lateral `w` (wheelset frame).
+    pub fn point_at_lateral(&self, w: f64) -> ContactPoint {
+        self.point_at(self.index_of(w).clamp(0.0, (self.samples.len() - 1) as f64))
+    }
+
+    /// Lateral range where both profiles exist at the last search's pose (wheelset frame): the
+    /// bounds of every patch [m].
+    pub fn scan_range(&self) -> (f64, f64) {
+        self.scan_bounds
+    }
+
+    /// The first lateral between `from` and `to` (either order) where the gap rises to `level`,
+    /// walking from `from` (where it lies below `level`); `to` if it stays below. Bracketed by
+    /// the samples, refined on the exact gap (Illinois) to 1e−10 m, so it moves continuously with
+    /// the pose and the level. `level` must not exceed the filled level.
+    pub fn crossing(&self, from: f64, to: f64, level: f64) -> f64 {
+        let p = &self.pose;
+        let s = &self.samples;
+        let last = s.len() - 1;
+        let forward = to > from;
+        // Samples strictly between from and to, walking outwards.
+        let (i_from, i_to) = (self.index_of(from), self.index_of(to));
+        let mut i = if forward {
+            (i_from.floor() + 1.0).max(0.0)
+        } else {
+            (i_from.ceil() - 1.0).min(last as f64)
+        };
+        let (mut a, mut ga) = (from, self.gap_at(from) - level);
+        if ga >= 0.0 {
+            return from;
+        }
+        loop {
+            let inside = if forward { i < i_to } else { i > i_to };
+            if !inside || i < 0.0 || i > last as f64 {
+                break;
+            }
+            let k = i as usize;
+            let g = s[k].gap - level;
+            let w = self.scan_lo + self.scan_dw * i;
+            if g >= 0.0 {
+                return self.level_root((a, ga), (w, self.gap_at(w) - level), level);
+            }
+            (a, ga) = (w, g);
+            i += if forward { 1.0 } else { -1.0 };
+        }
+        let gt = self.gap_at(to) - level;
+        if gt >= 0.0 {
+            self.level_root((a, ga), (to, gt), level)
+        } else {
+            let _ = p;
+            to
+        }
+    }
+
+    /// Root of gap(w) − `level` between a (below) and b (at or above) by Illinois to 1e−10 m.
+    fn level_root(
+        &self,
+        (mut a, mut fa): (f64, f64),
+        (mut b, mut fb): (f64, f64),
+        level: f64,
+    ) -> f64 {
+        let mut side = 0i8;
+        let mut w = b;
+        for _ in 0..60 {
+            if (b - a).abs() < 1e-10 || fb == 0.0 {
+                return b;
+            }
+            w = (a * fb - b * fa) / (fb - fa);
+            if !w.is_finite() || (w - a) * (w - b) > 0.0 {
+                w = 0.5 * (a + b);
+            }
+            let fw = self.gap_at(w) - level;
+            if fw < 0.0 {
+                (a, fa) = (w, fw);
+                if side < 0 {
+                    fb *= 0.5;
+                }
+                side = -1;
+            } else {
+                (b, fb) = (w, fw);
+                if side > 0 {
+                    fa *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        w
+    }
+
+    /// Moments of the interpenetration below `level` over the laterals [lo, hi] (wheelset
+    /// frame): with the depth d(w) = max(0, level − gap(w)), its integral, the d-weighted mean
+    /// lateral and the d-weighted variance of the lateral ([`DepthMoments`]); `None` where nothing
+    /// lies below the level. The gap between two samples is the cubic Hermite interpolant of the
+    /// samples' gaps and slopes (fourth order: a narrow flange region a few samples wide is
+    /// resolved, and a dip between two samples counts), integrated exactly between its crossings
+    /// of the level. Continuous in the pose, the level and the ends. `level` must not exceed the
+    /// filled level.
+    pub fn depth_moments(&self, lo: f64, hi: f64, level: f64) -> Option<DepthMoments> {
+        let s = &self.samples;
+        let last = s.len() - 1;
+        let (lo, hi) = (lo.min(hi), lo.max(hi));
+        let (span_lo, span_hi) = self.filled_span;
+        if span_lo > span_hi {
+            return None;
+        }
+        let ia = self.index_of(lo).clamp(span_lo as f64, span_hi as f64);
+        let ib = self.index_of(hi).clamp(span_lo as f64, span_hi as f64);
+        let h = self.scan_dw;
+        // Moments in the sample index t (w = scan_lo + h t); converted at the end.
+        let mut sums = [0.0; 3];
+        let mut k = (ia as usize).min(last.saturating_sub(1));
+        while (k as f64) < ib && k < last {
+            let (a, b) = (&s[k], &s[k + 1]);
+            if a.gap.is_finite() && b.gap.is_finite() {
+                let cubic = hermite_depth(level, a.gap, b.gap, a.slope * h, b.slope * h);
+                let (t0, t1) = ((ia - k as f64).max(0.0), (ib - k as f64).min(1.0));
+                if t1 > t0 {
+                    let m = positive_moments(&cubic, t0, t1);
+                    // Shift from the segment's t to the sample index: t → k + t.
+                    let kf = k as f64;
+                    sums[0] += m[0];
+                    sums[1] += m[1] + kf * m[0];
+                    sums[2] += m[2] + 2.0 * kf * m[1] + kf * kf * m[0];
+                }
+            }
+            k += 1;
+        }
+        if !(sums[0] > 0.0) {
+            return None;
+        }
+        let mean_t = sums[1] / sums[0];
+        let variance_t = (sums[2] / sums[0] - mean_t * mean_t).max(0.0);
+        Some(DepthMoments {
+            integral: sums[0] * h,
+            mean: self.scan_lo + h * mean_t,
+            variance: variance_t * h * h,
+        })
+    }
+
+    /// Inclination of the rail at lateral `w0` in the wheelset frame, γ = −atan(dz/dw) [rad]
+    /// (positive rising towards the flange): the angle of the contact plane at a gap minimum.
+    pub fn plane_angle_at(&self, w0: f64) -> f64 {
+        -self.rail_at(w0, &self.pose).slope.atan()
+    }
+
+    /// The contact plane through the rail point at lateral `w0` (wheelset frame) inclined by
+    /// `gamma` [rad], with the wheel lowered by `lift` (see [`WheelOnRail::contact_plane`]).
+    pub fn contact_plane_inclined(&self, w0: f64, lift: f64, gamma: f64) -> ContactPlane {
+        let p = &self.pose;
+        let rail = self.rail_at(w0, p);
+        let mut plane = ContactPlane::new(w0, rail.z, gamma, lift);
+        let (wheel, _) = project_on_plane(&plane, 0.0, |w| {
+            let q = self.wheel_at(w, p);
+            (q.z + lift, q.slope, ())
+        });
+        plane.gap_n = -normal_coordinate(&plane, wheel.w, wheel.z);
+        plane
+    }
+
     /// The contact candidates of the last search, ordered from the field side to the gauge
     /// side: the refined local minima of the gap below the filled level (at least the deepest
     /// point; [`WheelOnRail::regions`] adds those of the deeper levels it is asked for).
@@ -1401,13 +1768,19 @@ impl WheelOnRail {
         // computed, and a ridge through an unfilled interval (above the level) separates them
         // as the full scan's would.
         let mut found = [0usize; MAX_CANDIDATES];
+        // The highest sample between found[k] and found[k + 1] (an unfilled one is above the
+        // level: its gap is infinite).
+        let mut ridge_at = [0usize; MAX_CANDIDATES];
         let mut count = 0usize;
         let mut ridge = f64::NEG_INFINITY;
+        let mut ridge_index = 0usize;
         // Minima below the level lie in the filled span.
         let (span_lo, span_hi) = self.filled_span;
         for i in span_lo.max(1)..span_hi.min(n) {
             let g = s[i].gap;
-            ridge = ridge.max(g);
+            if g > ridge {
+                (ridge, ridge_index) = (g, i);
+            }
             if !(g < level - MIN_PROMINENCE && g <= s[i - 1].gap && g < s[i + 1].gap) {
                 continue;
             }
@@ -1418,13 +1791,14 @@ impl WheelOnRail {
                     if g < s[prev].gap {
                         found[count - 1] = i;
                     }
-                    ridge = g;
+                    (ridge, ridge_index) = (g, i);
                     continue;
                 }
+                ridge_at[count - 1] = ridge_index;
             }
             found[count] = i;
             count += 1;
-            ridge = g;
+            (ridge, ridge_index) = (g, i);
         }
         // Refine and describe, field side first (largest w first); a minimum refined at a
         // lower level of this search is taken over (its samples are the same).
@@ -1444,8 +1818,28 @@ impl WheelOnRail {
             };
             candidates.push(point);
         }
+        // Ridges between neighbouring candidates (field side first, as the candidates): the
+        // highest sample between them refined to the gap's local maximum, or none where an
+        // unfilled interval lies between them (the ridge is above the filled level).
+        let mut ridges = [None; MAX_CANDIDATES];
+        for k in 0..count.saturating_sub(1) {
+            // Candidate k (field side) is found[count − 1 − k]; the ridge before it is
+            // ridge_at[count − 2 − k].
+            let i = ridge_at[count - 2 - k];
+            let (outer, inner) = (&candidates.points[k], &candidates.points[k + 1]);
+            ridges[k] = s[i].gap.is_finite().then(|| {
+                let a = (lo + step * (i - 1) as f64).max(inner.lateral);
+                let b = (lo + step * (i + 1) as f64).min(outer.lateral);
+                let (w, top) = self.refine_ridge(a, b, &p);
+                Ridge {
+                    lateral: w,
+                    gap: top.gap.max(s[i].gap),
+                }
+            });
+        }
         self.candidates = candidates;
         self.candidate_minima = minima;
+        self.ridges = ridges;
         self.samples = s;
     }
 }

@@ -23,6 +23,7 @@ pub mod kalker;
 pub mod kik_piotrowski;
 pub mod linder;
 pub mod load_balance;
+pub mod patch_groups;
 pub mod patch_tangential;
 pub mod point_contact;
 pub mod profile;

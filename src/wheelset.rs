@@ -25,11 +25,12 @@
 //! independently at the given roll (as CONTACT does with per-wheel prescribed loads); straight
 //! track; the wheelset's angular velocity has no roll-rate term.
 
-use crate::contact_search::{ContactPoint, Region, SearchError, SidePose, WheelOnRail};
+use crate::contact_search::{ContactPoint, SearchError, SidePose, WheelOnRail};
 use crate::error::InputError;
 use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
 use crate::hertz::{contact_modulus, shear_modulus};
 use crate::load_balance::balance_hertzian;
+use crate::patch_groups::MAX_GROUPS;
 use crate::patch_tangential::{strip_flexibilities, EquivalentEllipse, TangentialModel};
 use crate::point_contact::Material;
 use crate::profile::Profile;
@@ -38,7 +39,7 @@ use crate::strips::{
     HertzShapeTable, NormalModel, NormalParams, DEFAULT_B_SMOOTHING, DEFAULT_STRIPS, MAX_STRIPS,
 };
 use crate::track::{GeometryError, TrackSetup};
-use crate::wheel_strips::{StripPatch, StripSettings, StripSide};
+use crate::wheel_strips::{group_bounds, groups_at, StripPatch, StripSettings, StripSide};
 
 /// Patches reported per wheel.
 pub const MAX_PATCHES: usize = 3;
@@ -179,6 +180,10 @@ pub struct PatchResult {
     /// Curvatures used for the ellipse [1/m].
     pub curv_a: f64,
     pub curv_b: f64,
+    /// Weight of the patch in the wheel's forces (1 but where two contact descriptions are
+    /// blended, `crate::patch_groups`); `fn_`, `fx`, `fy`, `mz`, `area` and
+    /// `frictional_power` include it [-].
+    pub weight: f64,
 }
 
 /// Tangential traction in one element of a patch (forces of the rail on the wheel).
@@ -202,9 +207,15 @@ pub struct TractionElement {
 /// One wheel's result.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SideResult {
+    /// Patches in the output slots (`patches[k]` with `weight` > 0).
     pub n_patches: usize,
-    /// Field side first; unused entries are zero.
+    /// The output slots: a patch keeps its slot while it exists (matched from step to step by
+    /// its reference point); a new patch takes the first free slot. Unused slots are zero.
     pub patches: [PatchResult; MAX_PATCHES],
+    /// Every patch of the wheel, also those beyond the output slots (their forces are in
+    /// `force`): `groups[..n_groups]`.
+    pub n_groups: usize,
+    pub groups: [PatchResult; MAX_GROUPS],
     /// Total force of the rail on the wheel in track axes [N].
     pub force: [f64; 3],
     /// The wheel's downward displacement from nominal at which it carries its load [m].
@@ -275,18 +286,38 @@ struct Side {
     /// +1 right, −1 left.
     sigma: f64,
     geometry: WheelOnRail,
-    regions: [Region; MAX_PATCHES],
-    fastsim: [Fastsim; MAX_PATCHES],
+    /// FASTSIM of the Hertz patches, one per patch group.
+    fastsim: Vec<Fastsim>,
     /// Strip patches of the non-elliptic models (`None` for Hertz).
     strips: Option<StripSide>,
-    /// Tangential solvers of the strip patches (one per reported patch) and the strip buffer.
+    /// Tangential solvers of the strip patches (one per patch group) and the strip buffer.
     strip_fastsim: Vec<StripFastsim>,
     tangential_strips: Vec<TangentialStrip>,
     /// `y_rail` of the Hertz patches of the last evaluation (for their traction field).
-    last_y_rail: [f64; MAX_PATCHES],
+    last_y_rail: [f64; MAX_GROUPS],
     /// The last prescribed-load solution, the next one's starting point.
     warm: Option<WarmStart>,
+    /// For each entry of `SideResult::groups` of a strip model, its patch in `strips`.
+    strip_of_group: [Option<usize>; MAX_GROUPS],
+    /// The patches in the output slots after the last solve: their `y_rail` (the identity
+    /// matched in the next step) and their index in `SideResult::groups`.
+    slots: [Option<Slot>; MAX_PATCHES],
 }
+
+/// A patch in an output slot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Slot {
+    /// The patch's reference point on the rail, `PatchResult::y_rail` [m].
+    pub y_rail: f64,
+    /// Index of the patch in `SideResult::groups`.
+    pub group: usize,
+}
+
+/// Largest move of a patch's reference point (`y_rail`) between two steps for it to keep its
+/// output slot [m]: 4 mm, more than a reference point moves in one communication step of any
+/// vehicle run (a wheelset hunting at 5 Hz with 10 mm amplitude moves 0.3 mm per millisecond),
+/// less than the distance between a tread and a flange contact (≳ 10 mm).
+const SLOT_MATCH_DISTANCE: f64 = 4e-3;
 
 /// Where the prescribed-load iteration of a wheel starts: the previous step's solution,
 /// extrapolated by its change over that step (a moving wheelset's approach and creep component
@@ -384,23 +415,22 @@ impl Wheelset {
                     settings.scan_step,
                     settings.b_min,
                 )?,
-                regions: [Region::default(); MAX_PATCHES],
-                fastsim: [
-                    Fastsim::new(settings.fastsim)?,
-                    Fastsim::new(settings.fastsim)?,
-                    Fastsim::new(settings.fastsim)?,
-                ],
+                fastsim: (0..MAX_GROUPS)
+                    .map(|_| Fastsim::new(settings.fastsim))
+                    .collect::<Result<_, _>>()?,
                 strips: StripSide::new(settings.normal_model),
                 strip_fastsim: if settings.normal_model == NormalModel::Hertz {
                     Vec::new()
                 } else {
-                    (0..MAX_PATCHES)
+                    (0..MAX_GROUPS)
                         .map(|_| StripFastsim::new(settings.fastsim.nx, settings.fastsim.scheme))
                         .collect::<Result<_, _>>()?
                 },
                 tangential_strips: vec![TangentialStrip::default(); MAX_STRIPS],
-                last_y_rail: [0.0; MAX_PATCHES],
+                last_y_rail: [0.0; MAX_GROUPS],
                 warm: None,
+                strip_of_group: [None; MAX_GROUPS],
+                slots: [None; MAX_PATCHES],
             })
         };
         Ok(Self {
@@ -426,28 +456,27 @@ impl Wheelset {
         }
     }
 
-    /// The strip patches of one wheel after the last solve (empty for Hertz). Those whose
-    /// [`crate::strips::PatchSummary::in_contact`] holds are the wheel's patches, in the same order.
+    /// The strip patches of one wheel after the last solve (empty for Hertz): one per patch
+    /// group, with its weight ([`crate::patch_groups`]). Those whose
+    /// [`crate::strips::PatchSummary::in_contact`] holds carry load.
     pub fn strip_patches(&self, right: bool) -> &[crate::wheel_strips::StripPatch] {
         let side = if right { &self.right } else { &self.left };
         side.strips.as_ref().map_or(&[], |s| s.patches())
     }
 
-    /// The traction field of patch `patch` (0-based, as in [`SideResult::patches`]) of one wheel
-    /// after the last solve, or `None` if there is no such patch. Allocates (on request only).
-    /// Strip patches: every element of every strip in contact, `s` the strip's lateral
-    /// coordinate in its contact plane (towards the field side) and `y_rail` the rail point of
-    /// the strip; Hertz patches: the FASTSIM grid, `s` from the ellipse centre towards the
-    /// field side and `y_rail` = the patch's `y_rail` + `s`.
+    /// The traction field of the patch in output slot `patch` (0-based, as in
+    /// [`SideResult::patches`]) of one wheel after the last solve, or `None` if the slot is
+    /// empty. Allocates (on request only). Tractions are those of the patch itself (not scaled
+    /// by its weight). Strip patches: every element of every strip in contact, `s` the strip's
+    /// lateral coordinate in its contact plane (towards the field side) and `y_rail` the rail
+    /// point of the strip; Hertz patches: the FASTSIM grid, `s` from the ellipse centre towards
+    /// the field side and `y_rail` = the patch's `y_rail` + `s`.
     pub fn traction_field(&self, right: bool, patch: usize) -> Option<Vec<TractionElement>> {
         let side = if right { &self.right } else { &self.left };
+        let group = side.slots.get(patch).copied().flatten()?.group;
         if let Some(strips) = side.strips.as_ref() {
-            let p = strips
-                .patches()
-                .iter()
-                .filter(|p| p.summary().in_contact())
-                .nth(patch)?;
-            let solver = side.strip_fastsim.get(patch)?;
+            let p = strips.patches().get(side.strip_of_group[group]?)?;
+            let solver = side.strip_fastsim.get(group)?;
             return Some(
                 solver
                     .tractions()
@@ -463,8 +492,8 @@ impl Wheelset {
                     .collect(),
             );
         }
-        let y_rail = side.last_y_rail.get(patch).copied()?;
-        let solver = side.fastsim.get(patch)?;
+        let y_rail = side.last_y_rail.get(group).copied()?;
+        let solver = side.fastsim.get(group)?;
         let field: Vec<_> = solver
             .tractions()
             .map(|e| TractionElement {
@@ -478,6 +507,17 @@ impl Wheelset {
             })
             .collect();
         (!field.is_empty()).then_some(field)
+    }
+
+    /// The output slots of both wheels after the last solve, `[left, right]` (part of the state
+    /// that decides which slot a patch of the next step takes).
+    pub fn slots(&self) -> [[Option<Slot>; MAX_PATCHES]; 2] {
+        [self.left.slots, self.right.slots]
+    }
+
+    /// Replaces the output slots (e.g. from a saved state).
+    pub fn set_slots(&mut self, slots: [[Option<Slot>; MAX_PATCHES]; 2]) {
+        [self.left.slots, self.right.slots] = slots;
     }
 
     /// The warm starts of the load iteration, `[left, right]` (`None`: the next solve starts
@@ -621,8 +661,31 @@ fn creepages_with(
     }
 }
 
+/// Fraction of a patch group's depth at which its reference point is taken: Kik–Piotrowski's
+/// virtual-penetration factor (see [`evaluate_side`]).
+const VIRTUAL_FRACTION: f64 = crate::kik_piotrowski::KP_EPSILON;
+
 /// Evaluates one wheel lowered by `dz` (with FASTSIM per patch if `tangential`, else normal
 /// forces only); returns the vertical force of the rail on the wheel, upwards positive [N].
+///
+/// Multi-Hertzian: every patch group at the level dz ([`crate::patch_groups`]) is one Hertz
+/// patch, described by integrals of its interpenetration between the ridges that separate it
+/// from the other groups — never by the position of one minimum, which in a conformal contact
+/// is round-off (the gap is flat to 0.1 µm over millimetres where S1002's R13 flange root meets
+/// UIC60's R13 gauge corner):
+/// * depth δ_v = dz − g_min (vertical), g_min the group's deepest gap;
+/// * the virtual interpenetration at Kik–Piotrowski's ε = 0.55 of that depth, d(w) =
+///   max(0, g_min + ε δ_v − gap(w)) ([`crate::contact_search::WheelOnRail::depth_moments`]):
+///   its d-weighted mean lateral is the patch's reference point — the force centroid of the
+///   virtual region (Piotrowski & Kik 2008: the patch lies inside the virtual region, and a
+///   strip's load is linear in its virtual penetration, as it is for a Hertz ellipse); on a
+///   symmetric gap the deepest point, on a near-conformal one (Manchester, right wheel at
+///   0.5 mm) within 1 mm of CONTACT's reference point where the deepest point is 2.8 mm off;
+/// * its d-weighted variance σ² of the lateral gives the lateral curvature: a parabolic gap
+///   B_v w² has σ² = ε δ_v/(5 B_v), so B_v = ε δ_v/(5σ²) — the point curvature on a Hertzian
+///   gap, a mean over the patch otherwise (as CONTACT's KPEC takes B from the virtual region's
+///   width). In the contact plane B = B_v cos³γ (floored at `b_min`), A = cos γ/(2r) at the
+///   reference point, and the normal approach δ_v cos γ.
 fn evaluate_side(
     side: &mut Side,
     ctx: &Context,
@@ -635,52 +698,113 @@ fn evaluate_side(
         z: dz,
         ..SideResult::default()
     };
-    let n = side.geometry.regions(dz, &mut side.regions);
-    // Regions come field side first; keep that order.
+    let (layout, candidates, m) = groups_at(&mut side.geometry, dz);
+    let candidates = &candidates[..m];
+    let mut ridges = [None; crate::contact_search::MAX_CANDIDATES];
+    ridges[..m.saturating_sub(1)].copy_from_slice(side.geometry.ridges());
+    let ridges = &ridges[..m.saturating_sub(1)];
+    let scan = side.geometry.scan_range();
+    let b_floor = ctx.strips.params.b_floor();
     let mut upward = 0.0;
-    for k in 0..n {
-        let region = side.regions[k];
-        let deepest = side.geometry.point_at(region.deepest as f64);
-        let reference = side.geometry.point_at(region.centroid_index);
-        let approach = region.depth * deepest.contact_angle.cos();
-        let patch = ctx
-            .table
-            .patch(deepest.curv_a, deepest.curv_b, approach, ctx.e_star)?;
-        if !(patch.a.is_normal() && patch.b.is_normal()) {
+    for group in layout.groups() {
+        let Some((reference, patch)) = group_ellipse(
+            &side.geometry,
+            ctx,
+            candidates,
+            ridges,
+            group,
+            scan,
+            dz,
+            b_floor,
+        )?
+        else {
             continue;
-        }
-        let result = PatchResult {
-            fn_: patch.normal_force,
-            area: patch.area(),
-            pmax: patch.p0,
-            a: patch.a,
-            b: patch.b,
-            length: 2.0 * patch.a,
-            width: 2.0 * patch.b,
-            penetration: approach,
-            curv_a: deepest.curv_a,
-            curv_b: deepest.curv_b,
-            ..PatchResult::default()
         };
-        upward += add_patch(side, ctx, input, &reference, result, out, tangential)?;
+        upward += add_patch(
+            side,
+            ctx,
+            input,
+            &reference,
+            patch,
+            group.weight,
+            out,
+            tangential,
+        )?;
     }
     Ok(upward)
 }
 
+/// The Hertz patch of `group` at lowering `dz` ([`evaluate_side`]): its reference point and its
+/// normal solution, or `None` where it has no interpenetration.
+#[allow(clippy::too_many_arguments)]
+fn group_ellipse(
+    geometry: &WheelOnRail,
+    ctx: &Context,
+    candidates: &[ContactPoint],
+    ridges: &[Option<crate::contact_search::Ridge>],
+    group: &crate::patch_groups::Group,
+    scan: (f64, f64),
+    dz: f64,
+    b_floor: f64,
+) -> Result<Option<(ContactPoint, PatchResult)>, InputError> {
+    let deepest = candidates[group.first..=group.last]
+        .iter()
+        .map(|c| c.gap)
+        .fold(f64::INFINITY, f64::min);
+    let depth = dz - deepest;
+    if !(depth > 0.0) {
+        return Ok(None);
+    }
+    let (gauge, field) = group_bounds(candidates, ridges, group, scan);
+    let virtual_depth = VIRTUAL_FRACTION * depth;
+    let Some(moments) = geometry.depth_moments(gauge, field, deepest + virtual_depth) else {
+        return Ok(None);
+    };
+    let reference = geometry.point_at_lateral(moments.mean);
+    let cos_g = geometry.plane_angle_at(moments.mean).cos();
+    let curv_b = (virtual_depth / (5.0 * moments.variance) * cos_g.powi(3)).max(b_floor);
+    let approach = depth * cos_g;
+    if !(curv_b.is_finite() && approach > 0.0) {
+        return Ok(None);
+    }
+    let patch = ctx
+        .table
+        .patch(reference.curv_a, curv_b, approach, ctx.e_star)?;
+    if !(patch.a.is_normal() && patch.b.is_normal()) {
+        return Ok(None);
+    }
+    let result = PatchResult {
+        fn_: patch.normal_force,
+        area: patch.area(),
+        pmax: patch.p0,
+        a: patch.a,
+        b: patch.b,
+        length: 2.0 * patch.a,
+        width: 2.0 * patch.b,
+        penetration: approach,
+        curv_a: reference.curv_a,
+        curv_b,
+        ..PatchResult::default()
+    };
+    Ok(Some((reference, result)))
+}
+
 /// Completes a patch whose normal solution is in `result` (normal force, size, approach): the
 /// reference point's position and angle, creepages, FASTSIM on the patch's (equivalent)
-/// ellipse; stores it in the next slot of `out`, adds its force to `out.force` (track axes) and
-/// returns its upward force on the wheel [N].
+/// ellipse; stores it with its `weight` in the next entry of `out.groups`, adds its force to
+/// `out.force` (track axes) and returns its upward force on the wheel [N].
+#[allow(clippy::too_many_arguments)]
 fn add_patch(
     side: &mut Side,
     ctx: &Context,
     input: &WheelsetInput,
     reference: &ContactPoint,
     mut result: PatchResult,
+    weight: f64,
     out: &mut SideResult,
     tangential: bool,
 ) -> Result<f64, InputError> {
-    if out.n_patches >= MAX_PATCHES {
+    if out.n_groups >= MAX_GROUPS {
         return Ok(0.0);
     }
     let gamma = reference.contact_angle;
@@ -697,11 +821,11 @@ fn add_patch(
         nu: ctx.material.poisson_ratio,
         mu: ctx.material.friction,
     };
-    side.last_y_rail[out.n_patches] = reference.y_rail;
+    side.last_y_rail[out.n_groups] = reference.y_rail;
     if !tangential {
-        return Ok(store_patch(side.sigma, result, [0.0; 3], out));
+        return Ok(store_patch(side.sigma, result, weight, [0.0; 3], out));
     }
-    let t = side.fastsim[out.n_patches].solve(&contact, &creepage, speed)?;
+    let t = side.fastsim[out.n_groups].solve(&contact, &creepage, speed)?;
     result.fx = t.fx;
     result.fy = t.fy;
     result.mz = t.mz;
@@ -709,7 +833,7 @@ fn add_patch(
     result.frictional_power = t.frictional_power;
     result.max_traction = t.max_traction;
     let tangential = planar_tangential(side.sigma, gamma, result.fx, result.fy);
-    Ok(store_patch(side.sigma, result, tangential, out))
+    Ok(store_patch(side.sigma, result, weight, tangential, out))
 }
 
 /// Unit vectors e_y, e_z of the contact axes at contact angle `gamma` on side `sigma` (track
@@ -735,20 +859,101 @@ fn tangential_in_axes(sigma: f64, angle_trig: (f64, f64), fx: f64, fy: f64) -> [
     [fx, fy * e_y[1], fy * e_y[2]]
 }
 
-/// Stores a completed patch `result` in the next slot of `out` and adds its force — the
-/// tangential part `tangential` (track axes) and the normal force along −e_z — to `out.force`.
-/// Returns its upward force on the wheel [N].
-fn store_patch(sigma: f64, result: PatchResult, tangential: [f64; 3], out: &mut SideResult) -> f64 {
+/// Stores a completed patch `result` with its `weight` in the next entry of `out.groups` and
+/// adds its weighted force — the tangential part `tangential` (track axes) and the normal force
+/// along −e_z — to `out.force`. Returns its weighted upward force on the wheel [N].
+fn store_patch(
+    sigma: f64,
+    mut result: PatchResult,
+    weight: f64,
+    tangential: [f64; 3],
+    out: &mut SideResult,
+) -> f64 {
     let (_, e_z) = contact_axes(sigma, result.contact_angle);
     let mut total = [0.0; 3];
     for i in 0..3 {
-        total[i] = tangential[i] - result.fn_ * e_z[i];
+        total[i] = weight * (tangential[i] - result.fn_ * e_z[i]);
         out.force[i] += total[i];
     }
-    out.patches[out.n_patches] = result;
-    out.n_patches += 1;
+    result.weight = weight;
+    for v in [
+        &mut result.fn_,
+        &mut result.fx,
+        &mut result.fy,
+        &mut result.mz,
+        &mut result.area,
+        &mut result.frictional_power,
+    ] {
+        *v *= weight;
+    }
+    out.groups[out.n_groups] = result;
+    out.n_groups += 1;
     // z points down: the upward force is −F_z.
     -total[2]
+}
+
+/// Fills the output slots of `out` from its patch groups, keeping each patch in the slot it had
+/// in the last step (`slots`, matched by the reference point's `y_rail` within
+/// [`SLOT_MATCH_DISTANCE`], nearest first); new patches take the first free slots, heaviest
+/// first; where more patches carry load than there are slots, the lightest are not shown (their
+/// forces are in the totals). Updates `slots`.
+fn assign_slots(slots: &mut [Option<Slot>; MAX_PATCHES], out: &mut SideResult) {
+    let n = out.n_groups;
+    // The heaviest patches, at most one per slot.
+    let mut order = [0usize; MAX_GROUPS];
+    for (k, o) in order.iter_mut().enumerate() {
+        *o = k;
+    }
+    let order = &mut order[..n];
+    order.sort_by(|&a, &b| out.groups[b].fn_.total_cmp(&out.groups[a].fn_));
+    let shown = &order[..n.min(MAX_PATCHES)];
+    let mut taken = [false; MAX_GROUPS];
+    let mut next: [Option<Slot>; MAX_PATCHES] = [None; MAX_PATCHES];
+    // Matches nearest first.
+    let mut pairs = [(f64::INFINITY, 0usize, 0usize); MAX_PATCHES * MAX_PATCHES];
+    let mut count = 0;
+    for (slot, old) in slots.iter().enumerate() {
+        let Some(old) = old else { continue };
+        for &g in shown {
+            let d = (out.groups[g].y_rail - old.y_rail).abs();
+            if d <= SLOT_MATCH_DISTANCE {
+                pairs[count] = (d, slot, g);
+                count += 1;
+            }
+        }
+    }
+    let pairs = &mut pairs[..count];
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for &(_, slot, g) in pairs.iter() {
+        if next[slot].is_none() && !taken[g] {
+            next[slot] = Some(Slot {
+                y_rail: out.groups[g].y_rail,
+                group: g,
+            });
+            taken[g] = true;
+        }
+    }
+    for &g in shown {
+        if taken[g] {
+            continue;
+        }
+        if let Some(free) = next.iter().position(|s| s.is_none()) {
+            next[free] = Some(Slot {
+                y_rail: out.groups[g].y_rail,
+                group: g,
+            });
+            taken[g] = true;
+        }
+    }
+    out.patches = [PatchResult::default(); MAX_PATCHES];
+    out.n_patches = 0;
+    for (slot, s) in next.iter().enumerate() {
+        if let Some(s) = s {
+            out.patches[slot] = out.groups[s.group];
+            out.n_patches += 1;
+        }
+    }
+    *slots = next;
 }
 
 /// Writes the outputs of the strip patches of `side` (solved at lowering `dz`): patch figures
@@ -771,17 +976,19 @@ fn evaluate_strips(
     };
     let mut upward = 0.0;
     let mut status = Ok(());
-    for patch in strips.patches() {
-        if out.n_patches >= MAX_PATCHES {
+    side.strip_of_group = [None; MAX_GROUPS];
+    for (index, patch) in strips.patches().iter().enumerate() {
+        if out.n_groups >= MAX_GROUPS {
             break;
         }
         let summary = patch.summary();
         if !summary.in_contact() {
             continue;
         }
-        match strip_patch_result(side, ctx, input, patch, &summary, dz, out.n_patches) {
+        match strip_patch_result(side, ctx, input, patch, &summary, dz, out.n_groups) {
             Ok((result, tangential)) => {
-                upward += store_patch(side.sigma, result, tangential, out);
+                side.strip_of_group[out.n_groups] = Some(index);
+                upward += store_patch(side.sigma, result, patch.weight, tangential, out);
             }
             Err(e) => {
                 status = Err(e);
@@ -987,13 +1194,14 @@ fn strip_patch_result(
         y_rail: reference.y_rail,
         contact_angle: gamma,
         rolling_radius: reference.rolling_radius,
-        penetration: patch.plane.approach(dz),
+        penetration: patch.approach(dz),
         creepage,
         adhesion_fraction: t.adhesion_fraction,
         frictional_power: t.frictional_power,
         max_traction: t.max_traction,
         curv_a: reference.curv_a,
         curv_b: reference.curv_b,
+        weight: 1.0,
     };
     Ok((result, tangential))
 }
@@ -1002,7 +1210,7 @@ fn strip_patch_result(
 /// total upward force less the normal forces' share (so that the non-planar strips' own
 /// directions count).
 fn creep_upward(out: &SideResult) -> f64 {
-    let normal: f64 = out.patches[..out.n_patches]
+    let normal: f64 = out.groups[..out.n_groups]
         .iter()
         .map(|p| p.fn_ * p.contact_angle.cos())
         .sum();
@@ -1021,7 +1229,7 @@ fn solve_strips(
     load: Option<f64>,
     touch: f64,
     creep: f64,
-    ratio_hints: [f64; 2],
+    ratio_hint: f64,
     out: &mut SideResult,
 ) -> Result<Option<f64>, WheelsetError> {
     if side.strips.is_none() {
@@ -1029,11 +1237,9 @@ fn solve_strips(
     }
     let table = ctx.table;
     let mut dz = out.z;
-    // One pass: the strip solve (the first, or without a load) or its re-balance to `target`,
-    // then the tangential problem at the new lowering; returns the creep forces' vertical
-    // component.
-    // The first pass lays the strips out for the load alone (not less a creep estimate that
-    // depends on the previous step), then re-balances to the pass's target on those strips.
+    // One pass: the strip layout and solve (the first, or without a load) or its re-balance to
+    // `target`, then the tangential problem at the new lowering; returns the creep forces'
+    // vertical component. The layout follows from the multi-Hertzian lowering `out.z` alone.
     let mut pass = |side: &mut Side, k: usize, target: Option<f64>| {
         let mut strips = side.strips.take().expect("strip buffers are present");
         dz = match target {
@@ -1042,11 +1248,10 @@ fn solve_strips(
                 &mut side.geometry,
                 &ctx.strips,
                 table,
-                load.or(target),
                 target,
                 touch,
                 dz,
-                ratio_hints,
+                ratio_hint,
             ),
         };
         side.strips = Some(strips);
@@ -1080,6 +1285,9 @@ fn creep_passes(
             break;
         };
         found = Some(new_creep);
+        if std::env::var_os("RC_DEBUG").is_some() {
+            eprintln!("pass {k}: creep {creep:.6} target {target:.6} new {new_creep:.6}");
+        }
         if k + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
             break;
         }
@@ -1125,15 +1333,15 @@ fn solve_side(
     let mut strip_ratios = [1.0; 2];
     if strip_model && load != Some(0.0) {
         let start = warm.map_or(0.0, |w| w.predicted().1);
-        let ratio_hints = warm.map_or([1.0; 2], |w| [w.strip_ratio, w.final_ratio]);
-        creep = solve_strips(side, ctx, input, load, touch, start, ratio_hints, out)?;
-        let layout_approach = side.strips.as_ref().map_or(0.0, |s| s.layout_approach());
+        let ratio_hint = warm.map_or(1.0, |w| w.final_ratio);
+        creep = solve_strips(side, ctx, input, load, touch, start, ratio_hint, out)?;
         let final_approach = out.z - touch;
-        if approach > 0.0 && layout_approach > 0.0 && final_approach > 0.0 {
-            strip_ratios = [layout_approach / approach, final_approach / approach];
+        if approach > 0.0 && final_approach > 0.0 {
+            strip_ratios = [final_approach / approach; 2];
         }
     }
     check_balance(side.name, load, out)?;
+    assign_slots(&mut side.slots, out);
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)
         .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratios));
