@@ -194,17 +194,19 @@ pub fn group_bounds(
     (gauge, field)
 }
 
-/// The patch groups of the wheel's current search at the level `level` [m] (see
-/// [`crate::patch_groups`]), with the candidates and ridges they refer to.
+/// The patch groups of the wheel's current search merged at the level `level` and in contact
+/// at the lowering `contact_level` [m] (see [`crate::patch_groups`]), with the candidates they
+/// refer to.
 pub fn groups_at(
     geometry: &mut WheelOnRail,
     level: f64,
+    contact_level: f64,
 ) -> (
     GroupLayout,
     [ContactPoint; crate::contact_search::MAX_CANDIDATES],
     usize,
 ) {
-    geometry.fill_to_level(level);
+    geometry.fill_to_level(level.max(contact_level));
     let candidates = geometry.candidates().as_slice();
     let m = candidates.len();
     let mut points = [ContactPoint::default(); crate::contact_search::MAX_CANDIDATES];
@@ -218,7 +220,12 @@ pub fn groups_at(
         ridge_gaps[k] = r.map(|r| r.gap);
     }
     (
-        GroupLayout::new(&gaps[..m], &ridge_gaps[..m.saturating_sub(1)], level),
+        GroupLayout::new(
+            &gaps[..m],
+            &ridge_gaps[..m.saturating_sub(1)],
+            level,
+            contact_level,
+        ),
         points,
         m,
     )
@@ -262,7 +269,7 @@ impl StripSide {
         settings: &StripSettings,
         table: &HertzShapeTable,
     ) {
-        let (layout, candidates, m) = groups_at(geometry, level);
+        let (layout, candidates, m) = groups_at(geometry, level, level);
         let candidates = &candidates[..m];
         let mut ridges = [None; crate::contact_search::MAX_CANDIDATES];
         ridges[..m.saturating_sub(1)].copy_from_slice(geometry.ridges());
