@@ -325,6 +325,66 @@ fn sweep_prints_a_header_and_one_row_per_shift() {
     assert!(stderr(&o).contains("y = 0.2 is outside the allowed range [-0.05, 0.05] [m]"));
 }
 
+/// An implausible contact state (`railcontact::validity`: approach > 1 mm or pmax > 10 GPa) —
+/// here the prescribed position z = +50 mm, inside the declared range — exits with 3: the JSON
+/// with finite outputs on stdout (the same numbers as the FMU's model), the warning on stderr
+/// naming the quantity, its value, the limit and the cause. z = +0.5 mm (approach 0.32 mm) is
+/// plausible: exit 0. `sweep` marks the rows and exits with 3, too.
+#[test]
+fn implausible_state_exits_with_3_and_prints_the_outputs() {
+    let case = temp_file("deep.json", "{\"verticalMode\": 2, \"z\": 0.05}");
+    let o = run(&["solve", case.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(3), "{err}");
+    let doc = json::parse(&stdout(&o)).unwrap_or_else(|e| panic!("invalid JSON: {e}"));
+    check_solution(&doc);
+    let penetration = real(&doc, "left.p1.penetration");
+    assert!(penetration > 1e-3, "{penetration}");
+    for part in [
+        "railcontact: warning: implausible contact state: left wheel, patch 1:".to_string(),
+        format!("penetration = {penetration:.4e} m exceeds the limit 1e-3 m"),
+        "the prescribed position z = 0.05 m (verticalMode = 2) pushes the left wheel".to_string(),
+        "not physical".to_string(),
+    ] {
+        assert!(err.contains(&part), "{part:?} in {err}");
+    }
+
+    let fine = temp_file("shallow.json", "{\"verticalMode\": 2, \"z\": 0.0005}");
+    let o = run(&["solve", fine.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+
+    let o = run(&[
+        "sweep",
+        case.to_str().unwrap(),
+        "--from",
+        "0",
+        "--to",
+        "0.001",
+        "--step",
+        "0.001",
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains("2 of the shifts give implausible contact states"),
+        "{err}"
+    );
+    let text = stdout(&o);
+    let rows: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    for row in rows {
+        assert!(
+            row.contains(" -- warning: implausible contact state"),
+            "{row}"
+        );
+    }
+}
+
 #[test]
 fn help_and_bad_arguments() {
     for args in [&["--help"][..], &["-h"], &["help"], &["solve", "--help"]] {
@@ -334,6 +394,7 @@ fn help_and_bad_arguments() {
         assert!(
             text.contains("railcontact solve [CASE.json]") && text.contains("railcontact sweep")
         );
+        assert!(text.contains("Exit codes:") && text.contains("3  implausible contact state"));
     }
     for args in [
         &[][..],

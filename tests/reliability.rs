@@ -543,12 +543,99 @@ fn tiny_and_large_loads() {
                     }
                 }
             }
-            // The largest allowed load: a documented status (OK) and finite outputs.
+            // The largest allowed load, 10 MN: the documented status (fmi2Warning: the approach,
+            // 1.7 mm with Hertz, is beyond the 1 mm of `railcontact::validity`), a message
+            // naming the load, and finite outputs.
             let s = run.step(&[("Qleft", 1e7), ("Qright", 1e7)]);
-            assert_eq!(s, OK, "{ctx}: {:?}", run.f.messages());
+            assert_eq!(s, WARNING, "{ctx}: {:?}", run.f.messages());
+            run.f.assert_warning_logged(&[
+                "implausible contact state",
+                "limit",
+                "= 10000000 N is far beyond wheel loads",
+            ]);
             run.f.outputs();
         }
     }
+}
+
+/// A prescribed position far into the rail — z = +50 mm, inside the declared range of `z` —
+/// is not answered with fmi2OK: `fmi2DoStep` returns fmi2Warning with finite outputs and a
+/// message naming the quantity, its value, the limit and the cause (`railcontact::validity`:
+/// 1 mm approach, 10 GPa). z = +2 mm (approach ≈ 1.8 mm, Fz ≈ 10 MN with Hertz) warns too;
+/// z = +0.5 mm (approach 0.32 mm, within the limit) and the prescribed loads are OK again right
+/// after: the warning does not stick. The lazy evaluation in `fmi2GetReal` and an absurd start
+/// value at `fmi2ExitInitializationMode` warn the same way.
+#[test]
+fn implausible_states_warn_with_finite_outputs() {
+    for nm in NORMAL_MODELS {
+        let ctx = format!("normalModel {nm}");
+        let mut params = models(nm, 1);
+        params.push(("verticalMode", P::I(2)));
+        let mut run = Run::new(initialized(wrc(), &name(&[&"implausible", &nm]), &params));
+        for (z, expected) in [(0.05, WARNING), (5e-4, OK), (0.002, WARNING), (5e-4, OK)] {
+            let s = run.step(&[("z", z)]);
+            assert_eq!(s, expected, "{ctx}, z = {z}: {:?}", run.f.messages());
+            let (get, out) = run.f.try_outputs();
+            assert_eq!(
+                get, OK,
+                "{ctx}, z = {z}: outputs read once the step is done"
+            );
+            run.f.assert_finite(&out);
+            if expected == WARNING {
+                run.t += H; // a warning is a completed step
+            }
+        }
+        run.f.assert_warning_logged(&[
+            "step at t = 0:",
+            "implausible contact state:",
+            "wheel, patch 1:",
+            "exceeds the limit",
+            "prescribed position z = 0.05 m (verticalMode = 2) pushes the",
+            "mm into the rail",
+            "not physical",
+        ]);
+        assert!(
+            run.f.warnings().iter().any(|m| m.contains("z = 0.002 m")),
+            "{ctx}: {:?}",
+            run.f.warnings()
+        );
+        assert!(run.f.errors().is_empty(), "{ctx}: {:?}", run.f.errors());
+    }
+
+    // Hertz: the message's numbers are the outputs' (the approach of the deepest patch).
+    let mut params = models(1, 1);
+    params.push(("verticalMode", P::I(2)));
+    let mut run = Run::new(initialized(wrc(), "implausible/numbers", &params));
+    assert_eq!(run.step(&[("z", 0.05)]), WARNING);
+    let penetration = run.f.real("left.p1.penetration");
+    assert!(penetration > 0.04, "{penetration}");
+    run.f.assert_warning_logged(&[
+        &format!("left wheel, patch 1: penetration = {penetration:.4e} m exceeds the limit 1e-3 m"),
+        &format!(
+            "pushes the left wheel {:.3} mm into the rail",
+            penetration * 1e3
+        ),
+    ]);
+
+    // Evaluated lazily by fmi2GetReal after the input changed: fmi2Warning there, too.
+    let f = initialized(wrc(), "implausible/get", &params);
+    assert_eq!(f.set_real("z", 0.05), OK);
+    let (s, out) = f.try_outputs();
+    assert_eq!(s, WARNING, "{:?}", f.messages());
+    f.assert_finite(&out);
+    f.assert_warning_logged(&["fmi2Get: implausible contact state"]);
+
+    // An absurd start: fmi2ExitInitializationMode warns, and the instance steps.
+    let f = Fmu::new(wrc(), "implausible/init");
+    assert_eq!(f.set_integer("verticalMode", 2), OK);
+    assert_eq!(f.set_real("z", 0.05), OK);
+    assert_eq!(f.setup(None), OK);
+    assert_eq!(f.enter(), OK);
+    assert_eq!(f.exit(), WARNING, "{:?}", f.messages());
+    f.assert_warning_logged(&["fmi2ExitInitializationMode: implausible contact state"]);
+    assert_eq!(f.step(0.0, H), WARNING);
+    assert_eq!(f.set_real("z", 5e-4), OK);
+    assert_eq!(f.step(H, H), OK, "{:?}", f.messages());
 }
 
 /// Runs `body` on its own thread and fails if it has not returned after `seconds` (a hang in
