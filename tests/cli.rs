@@ -246,6 +246,45 @@ fn malformed_profile_file_names_file_line_and_reason() {
     assert!(err.contains(&located), "{err}");
 }
 
+/// A wheel profile with its flange on the field side (the benchmark wheel file with its
+/// `mirror.y` switched off) exits with 1 and says so, naming the parameter and the file; the
+/// unmodified file solves.
+#[test]
+fn a_wheel_with_its_flange_on_the_wrong_side_exits_with_1() {
+    let benchmark = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/profiles/MBench_S1002_v3.prw");
+    let text = std::fs::read_to_string(&benchmark).expect("the shared benchmark wheel");
+    let unmirrored = text.replacen("mirror.y       =  1", "mirror.y       =  0", 1);
+    assert_ne!(unmirrored, text, "the benchmark file sets mirror.y = 1");
+    let wheel = temp_file("unmirrored.prw", &unmirrored);
+    let case = temp_file(
+        "unmirrored.json",
+        "{\"wheelProfile\": \"unmirrored.prw\", \"railProfile\": \"UIC60\"}",
+    );
+    let o = run(&["solve", case.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(o.stdout.is_empty());
+    for part in [
+        "wheelProfile = \"".to_string(),
+        format!("profile file '{}', line ", wheel.display()),
+        "the flange (its tip 30.6 mm high at y = +54.9 mm) lies on the field side".to_string(),
+        "the profile is not mirrored".to_string(),
+        "toggle mirror.y".to_string(),
+    ] {
+        assert!(err.contains(&part), "{part:?} in {err}");
+    }
+    let good = temp_file(
+        "benchmark_wheel.json",
+        &format!(
+            "{{\"wheelProfile\": {}}}",
+            json::quote(benchmark.to_str().unwrap())
+        ),
+    );
+    let o = run(&["solve", good.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
 #[test]
 fn pose_off_the_rail_exits_with_2() {
     // On standard gauge the built-in S1002 still finds the rail at |y| <= 0.05 (its flange tip

@@ -262,6 +262,27 @@ fn write(dir: &Path, file: &str, text: &[u8]) -> String {
     p.to_string_lossy().into_owned()
 }
 
+/// The shared benchmark profile `file` (e.g. `MBench_S1002_v3.prw`).
+fn benchmark(file: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/profiles")
+        .join(file)
+}
+
+/// The benchmark rail as CSV text (mm) with each point mapped by `f` (y, z in mm).
+fn benchmark_rail_csv(f: impl Fn(f64, f64) -> (f64, f64)) -> Vec<u8> {
+    let rail =
+        railcontact::profile::Profile::from_file(&benchmark("MBench_UIC60_v3.prr"), None, 0.0)
+            .expect("the shared benchmark rail");
+    let (y, z) = rail.points();
+    let mut text = String::from("y,z\n");
+    for (&a, &b) in y.iter().zip(z) {
+        let (a, b) = f(a * 1e3, b * 1e3);
+        text += &format!("{a},{b}\n");
+    }
+    text.into_bytes()
+}
+
 /// The shared benchmark wheel file with line `line` (1-based) replaced by `text`.
 fn benchmark_wheel_with(line: usize, text: &str) -> Vec<u8> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles/MBench_S1002_v3.prw");
@@ -290,6 +311,26 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
     let open_block = write(&dir, "open.prr", b"point.begin\n1 2\n3 4\n");
     let nan = write(&dir, "nan.csv", b"y z\n0 0\n1 nan\n2 0\n3 0\n");
     let empty = write(&dir, "empty.prw", b"");
+    // Parse cleanly, but fail the plausibility checks (railcontact::profile::checks).
+    let benchmark_wheel = std::fs::read_to_string(benchmark("MBench_S1002_v3.prw"))
+        .expect("the shared benchmark wheel");
+    let unmirrored = write(
+        &dir,
+        "unmirrored.prw",
+        benchmark_wheel
+            .replacen("mirror.y       =  1", "mirror.y       =  0", 1)
+            .as_bytes(),
+    );
+    let stepped = write(
+        &dir,
+        "stepped.csv",
+        &benchmark_rail_csv(|y, z| (y, if y > 3.0 { z + 0.5 } else { z })),
+    );
+    let metres = write(
+        &dir,
+        "metres.csv",
+        &benchmark_rail_csv(|y, z| (y / 1e3, z / 1e3)),
+    );
     let missing = dir
         .join("does-not-exist.prw")
         .to_string_lossy()
@@ -338,6 +379,30 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
             "wheelProfile",
             empty.clone(),
             vec![empty.clone(), "missing point block".into()],
+        ),
+        (
+            "wheelProfile",
+            unmirrored.clone(),
+            vec![
+                unmirrored.clone(),
+                "the flange (its tip 30.6 mm high at y = +54.9 mm) lies on the field side".into(),
+                "the profile is not mirrored".into(),
+                "toggle mirror.y".into(),
+            ],
+        ),
+        (
+            "railProfile",
+            stepped.clone(),
+            vec![
+                stepped.clone(),
+                "a step or spike at y = ".into(),
+                "set profileSmoothing = 0.0005 m or more".into(),
+            ],
+        ),
+        (
+            "railProfile",
+            metres.clone(),
+            vec![metres.clone(), "the values look like metres".into()],
         ),
         (
             "wheelProfile",
@@ -404,6 +469,30 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
         assert_eq!(f.step(0.0, H), OK);
         f.outputs();
     }
+}
+
+/// A profile defect that the smoothing absorbs is no error: the benchmark rail with a 0.5 mm
+/// step across its crown (refused at profileSmoothing = 0, test above) initializes and steps
+/// with the usual 1 mm smoothing, balancing the wheel load.
+#[test]
+fn a_step_absorbed_by_the_smoothing_initializes() {
+    let dir = temp_dir("absorbed");
+    let stepped = write(
+        &dir,
+        "stepped.csv",
+        &benchmark_rail_csv(|y, z| (y, if y > 3.0 { z + 0.5 } else { z })),
+    );
+    let mut run = Run::new(initialized(
+        wrc(),
+        "absorbedStep",
+        &[
+            ("railProfile", P::S(stepped)),
+            ("railInclination", P::R(0.0)),
+            ("profileSmoothing", P::R(1e-3)),
+        ],
+    ));
+    run.step_ok(&[]);
+    assert_balanced(&run.f, "right", Q, "stepped rail, 1 mm smoothing");
 }
 
 #[test]
