@@ -12,9 +12,9 @@
 //! # Limits (any patch of either wheel)
 //!
 //! * **Normal approach** (`penetration`) above [`MAX_PENETRATION`] = 1 mm. Wheel–rail approaches
-//!   are 10–200 µm (Hertz at 20–300 kN); at 1 mm a Hertz patch's semi-axis along the rolling
-//!   direction is already ≈ √(δ R) ≈ 20 mm for a wheel of R = 0.46 m, a third of the rail head's
-//!   width: the half-space assumption (patch ≪ radii and body dimensions) no longer holds.
+//!   are 10–200 µm (Hertz at 20–300 kN); at 1 mm the Hertz patch on the tread (built-in S1002
+//!   on UIC60) is 39 mm long and 78 mm wide, wider than the rail head (72 mm): the half-space
+//!   assumption (patch ≪ radii and body dimensions) no longer holds.
 //! * **Maximum pressure** (`pmax`) above [`MAX_PRESSURE`] = 10 GPa. Wheel–rail contact pressures
 //!   are 0.5–3 GPa on the tread and up to ≈ 5 GPa at a loaded flange; rail and wheel steels yield
 //!   in shear at pmax ≈ 1–2 GPa (first yield at ≈ 3.2 k, k the shear yield stress of 0.3–0.5 GPa)
