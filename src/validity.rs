@@ -4,10 +4,10 @@
 //! Every normal model of this crate (Hertz, the strip models) is elastic half-space contact: it
 //! assumes small strains, a patch that is small compared with the bodies' radii of curvature, and
 //! pressures the steel carries elastically. A prescribed position that pushes a wheel millimetres
-//! into the rail, or an absurd wheel load, still gives finite numbers — hundreds of meganewtons and
-//! tens of gigapascals — that mean nothing. [`validity`] flags such states; the FMU answers them with
-//! `fmi2Warning` and the message of [`Implausible::message`], the command line with its own exit
-//! code (`docs/reliability.md`, "Implausible contact states"). Outputs stay finite.
+//! into the rail, or an absurd wheel load, still gives finite numbers — hundreds of meganewtons
+//! and tens of gigapascals — that mean nothing. [`validity`] flags such states; the FMU answers
+//! them with `fmi2Warning` and the message of [`Implausible::message`], the command line with its
+//! own exit code (`docs/reliability.md`, "Implausible contact states"). Outputs stay finite.
 //!
 //! # Limits (any patch of either wheel)
 //!

@@ -26,24 +26,24 @@
 //!    is not the taping line, fails here.
 //! 4. **Gaps**: neighbouring points more than [`MAX_GAP_M`] = 3 mm apart (arc length) in the
 //!    contact region (below). A Hertz patch is 5–15 mm wide: across a 3 mm hole the spline guesses
-//!    a third of a patch. The benchmark files have at most 0.45 mm (wheel) and 0.93 mm (rail)
+//!    a third of a patch. The benchmark files have at most 0.64 mm (wheel) and 0.93 mm (rail)
 //!    there; decimated or partly deleted data fail.
 //! 5. **Steps and spikes the smoothing does not absorb**: a point that lies more than
 //!    [`DEFECT_OFFSET_M`] = 0.03 mm off the cubic through its four neighbours (two on each side,
 //!    interpolated over the chord length, so the offset is measured normal to the curve also on
 //!    steep flanks), *and* a fitted spline (with the file's smoothing length ℓ) that bends within
 //!    three points and 3ℓ of it with a radius below [`MIN_RADIUS_M`] = 2 mm. The offset threshold
-//!    is ten times the scatter of careful measurements (σ = 1–3 µm gives offsets of
-//!    1.4σ ≈ 1.4–4 µm; the benchmark files: ≤ 5 µm); a smooth curve of radius R sampled at h
-//!    deviates by ≈ h⁴/(4R³): 1.1e−4 mm at h = 1 mm on R = 13 mm, 0.009 mm at the largest
-//!    allowed spacing of 3 mm. The radius limit is well below the
-//!    sharpest feature in any wheel or rail running surface (S1002: 9.2 mm at s = −35 mm; UIC60
-//!    gauge corner 13 mm; the benchmark files ≥ 11 mm); a Hertz patch on a 2 mm radius is wider
-//!    than the feature. A 0.5 mm step or a 0.1 mm spike on a rail crown (points 0.46 mm apart)
-//!    bends an interpolating spline (ℓ = 0) to radii of 0.1–1 mm; a smoothing length of 0.5–1 mm
-//!    spreads it over ~4ℓ (the spline's impulse response) and absorbs it. The message suggests
-//!    the smallest of [`SMOOTHING_CANDIDATES_M`] that does (refitted and checked), or says that
-//!    none up to the parameter's maximum does.
+//!    is 7–20 times the offsets that the scatter of careful measurements gives (σ = 1–3 µm gives
+//!    offsets of 1.4σ ≈ 1.4–4 µm; the benchmark files: ≤ 5 µm); a smooth curve of radius R sampled
+//!    at h deviates by ≈ h⁴/(4R³): 1.1e−4 mm at h = 1 mm on R = 13 mm, 0.009 mm at the largest
+//!    allowed spacing of 3 mm. The radius limit is well below the sharpest feature in any wheel or
+//!    rail running surface (S1002: 9.2 mm at s = −35 mm; UIC60 gauge corner 13 mm; the benchmark
+//!    files, interpolated, ≥ 11 mm); a Hertz patch on a 2 mm radius is wider than the feature. A
+//!    0.5 mm step or a 0.1 mm spike on a rail crown (points 0.46 mm apart) bends an interpolating
+//!    spline (ℓ = 0) to radii of 0.1–1 mm; a smoothing length of 0.5–1 mm spreads it over ~4ℓ (the
+//!    spline's impulse response) and absorbs it. The message suggests the smallest of
+//!    [`SMOOTHING_CANDIDATES_M`] that does (refitted and checked), or says that none up to the
+//!    parameter's maximum does.
 //!
 //! The contact region of checks 4 and 5: for a wheel with a flange, from the flange tip to the
 //! field side end (the flange back never touches the rail); for a rail, the points at most
@@ -374,8 +374,9 @@ mod tests {
         assert!(check_units(&[0.0, 0.13]).is_ok());
         assert!(check_units(&[]).is_ok());
         let e = check_units(&[-0.0696e-3, 0.06e-3, 0.0]).unwrap_err();
-        assert!(
-            matches!(e, ErrorReason::LooksLikeMetres { span_mm } if (span_mm - 0.1296).abs() < 1e-12)
-        );
+        let ErrorReason::LooksLikeMetres { span_mm } = e else {
+            panic!("{e}");
+        };
+        assert!((span_mm - 0.1296).abs() < 1e-12, "{span_mm}");
     }
 }

@@ -115,6 +115,7 @@ struct Points<'a> {
 impl Profile {
     /// A profile through the points (`y`, `z`) [m] in the profile frame, strictly monotonic in y
     /// (descending input is reversed), smoothed with length `smoothing` [m] (0 = interpolate).
+    /// The plausibility checks of files are not run; [`Profile::check_plausibility`] does.
     pub fn from_points(
         name: &str,
         kind: ProfileKind,
@@ -180,7 +181,9 @@ impl Profile {
     /// Reads a profile file, by extension: `.prr` (Simpack rail), `.prw` (Simpack wheel) — the
     /// header `type` decides if present —, `.ban` (MiniProf text, rail); anything else is
     /// two-column text/CSV in mm, which needs `kind_hint`. A `kind_hint` that contradicts the file
-    /// is an error. `smoothing` as in [`Profile::from_points`].
+    /// is an error. `smoothing` as in [`Profile::from_points`]. The profile must then pass the
+    /// plausibility checks ([`checks`]: units, wheel orientation, coverage, gaps, steps and
+    /// spikes).
     pub fn from_file(
         path: &Path,
         kind_hint: Option<ProfileKind>,
