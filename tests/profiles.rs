@@ -539,7 +539,8 @@ fn profiles_in_metres_are_refused() {
     }
 }
 
-/// A truncated point block: the first or last half of the wheel's rows (the running surface
+/// A truncated point block: a Simpack file cut in the middle of its points (no `point.end`), the
+/// first or last half of the wheel's rows (the running surface
 /// around the taping line, −20 … +20 mm, is cut), the first half of the rail's rows (the field
 /// side of the head is missing), and the rail with ten crown rows deleted (a 3.7 mm hole) or
 /// only every tenth row kept (decimated: gaps of 4–5 mm). The three quarters of the wheel that
@@ -557,6 +558,16 @@ fn truncated_and_gappy_point_blocks_are_refused() {
         temp_file(name, text.as_bytes())
     };
     let wheel_kind = Some(ProfileKind::Wheel);
+    // The benchmark wheel file cut after a line in the middle of its point block.
+    let text = std::fs::read_to_string(bench("MBench_S1002_v3.prw")).unwrap();
+    let end = text[..text.len() / 2].rfind('\n').unwrap() + 1;
+    let cut = temp_file("cut.prw", &text.as_bytes()[..end]);
+    expect_refused(
+        &cut,
+        None,
+        0.0,
+        &["'point.begin' has no matching 'point.end': the file looks truncated"],
+    );
     for (name, rows) in [
         ("wheel_head.txt", &(|i| i < n / 2) as &dyn Fn(usize) -> bool),
         ("wheel_tail.txt", &|i| i >= n / 2),

@@ -163,7 +163,9 @@ impl fmt::Display for ErrorReason {
             ),
             ErrorReason::TooFewPoints { found } => write!(
                 f,
-                "too few points ({found}; at least {} are needed)",
+                "too few points ({found}; at least {} are needed): the point block looks \
+                 truncated or empty; supply the whole profile (measured profiles have hundreds \
+                 of points)",
                 super::MIN_POINTS
             ),
             ErrorReason::TooManyPoints { limit } => {
@@ -180,7 +182,11 @@ impl fmt::Display for ErrorReason {
                 write!(f, "missing point block (no 'point.begin' … 'point.end')")
             }
             ErrorReason::UnterminatedPointBlock => {
-                write!(f, "'point.begin' has no matching 'point.end'")
+                write!(
+                    f,
+                    "'point.begin' has no matching 'point.end': the file looks truncated; \
+                     supply the complete file, its points ended by 'point.end'"
+                )
             }
             ErrorReason::UnexpectedPointEnd => write!(f, "'point.end' without 'point.begin'"),
             ErrorReason::DuplicatePointBlock => write!(f, "a second 'point.begin' block"),
