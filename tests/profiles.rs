@@ -419,8 +419,9 @@ fn bench_pair() -> (Profile, Profile) {
 /// Clean profiles still load and pass every check: the built-ins, the three benchmark files at
 /// smoothing lengths 0 … 10 mm (the parameter's range), and MiniProf-style measurements — the
 /// built-in UIC60 head and the benchmark wheel with σ = 2 µm Gaussian scatter, written with four
-/// decimals (0.1 µm) as a MiniProf text `.ban` and a CSV — interpolated and smoothed. The scatter
-/// gives point offsets of ~3 µm, ten times below the 0.03 mm defect threshold (checks.rs).
+/// decimals (0.1 µm) as a MiniProf text `.ban` and a CSV, and the wheel with a sharp-cornered
+/// field-side face — interpolated and smoothed. The scatter gives point offsets of ~3 µm, ten
+/// times below the 0.03 mm defect threshold (checks.rs).
 #[test]
 fn clean_profiles_pass_the_plausibility_checks() {
     for name in ["S1002", "UIC60", "60E1"] {
@@ -466,9 +467,29 @@ fn clean_profiles_pass_the_plausibility_checks() {
         )
     });
     let wheel_csv = temp_file("measured_wheel.csv", wheel_csv.as_bytes());
+    // A measured wheel often ends with a chamfer and its field-side face, with sharp corners
+    // (here a 45° chamfer from +60 to +65 mm, then 15 mm straight down): outside the contact
+    // region, so they pass (an interpolating spline bends at the corners with radii < 1 mm).
+    let mut with_face = csv_of(&wheel, |_, a, b| (a, b));
+    let (wy, wz) = wheel.points();
+    let (y_end, z_end) = (wy[wy.len() - 1] * MM, wz[wz.len() - 1] * MM);
+    for k in 1..=20 {
+        let d = 0.25 * f64::from(k);
+        with_face += &format!("{},{}\n", y_end + d, z_end - d);
+    }
+    for k in 1..=30 {
+        let (y, z) = (
+            y_end + 5.0 + 1e-4 * f64::from(k),
+            z_end - 5.0 - 0.5 * f64::from(k),
+        );
+        with_face += &format!("{y},{z}\n");
+    }
+    let with_face = temp_file("wheel_with_face.csv", with_face.as_bytes());
     for smoothing in [0.0, 1e-3] {
         Profile::from_file(&ban, None, smoothing).unwrap_or_else(|e| panic!("{e}"));
         Profile::from_file(&wheel_csv, Some(ProfileKind::Wheel), smoothing)
+            .unwrap_or_else(|e| panic!("{e}"));
+        Profile::from_file(&with_face, Some(ProfileKind::Wheel), smoothing)
             .unwrap_or_else(|e| panic!("{e}"));
     }
 }

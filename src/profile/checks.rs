@@ -45,11 +45,13 @@
 //!    [`SMOOTHING_CANDIDATES_M`] that does (refitted and checked), or says that none up to the
 //!    parameter's maximum does.
 //!
-//! The contact region of checks 4 and 5: for a wheel with a flange, from the flange tip to the
-//! field side end (the flange back never touches the rail); for a rail, the points at most
-//! [`CHECK_DEPTH_M`] = 20 mm below its highest point (crown, corners, the upper gauge face). The
-//! near-vertical flanks below, where measured data are sparse and contact cannot occur, are not
-//! checked.
+//! The contact region of checks 4 and 5: for a wheel, from the flange tip (or, without a flange,
+//! from the start) to y = [`WHEEL_CHECK_FIELD_M`] = +40 mm — tread contact lies within ±20 mm
+//! of the taping line, a patch is at most ~15 mm wide, and neither the flange back nor the
+//! field-side chamfer and face (with their sharp corners in measured data) ever touch the rail;
+//! for a rail, the points at most [`CHECK_DEPTH_M`] = 20 mm below its highest point (crown,
+//! corners, the upper gauge face). The near-vertical flanks below, where measured data are
+//! sparse and contact cannot occur, are not checked.
 //!
 //! Limits: rails are not checked for orientation (a mirrored, symmetric rail head is the same
 //! rail); a profile whose z points upwards is not recognised as such.
@@ -68,6 +70,8 @@ pub const WHEEL_COVERAGE_M: f64 = 20e-3;
 pub const MIN_RAIL_DEPTH_M: f64 = 10e-3;
 /// Depth below the rail's highest point to which the rail is checked for gaps and defects [m].
 pub const CHECK_DEPTH_M: f64 = 20e-3;
+/// Lateral coordinate up to which a wheel is checked for gaps and defects [m].
+pub const WHEEL_CHECK_FIELD_M: f64 = 40e-3;
 /// Largest distance between neighbouring points in the contact region [m].
 pub const MAX_GAP_M: f64 = 3e-3;
 /// Offset of a point from the curve through its neighbours that marks a step or spike [m].
@@ -150,8 +154,9 @@ pub fn check_shape(
                     needed_mm: WHEEL_COVERAGE_M * MM,
                 }));
             }
-            // From the flange tip to the field side end.
-            tip.unwrap_or(0)..n
+            // From the flange tip to WHEEL_CHECK_FIELD_M.
+            let end = y.partition_point(|&v| v <= WHEEL_CHECK_FIELD_M);
+            tip.unwrap_or(0)..end
         }
         ProfileKind::Rail => {
             let top = argmin(z);
