@@ -650,7 +650,7 @@ fn tiny_and_large_loads() {
 /// A prescribed position far into the rail — z = +50 mm, inside the declared range of `z` —
 /// is not answered with fmi2OK: `fmi2DoStep` returns fmi2Warning with finite outputs and a
 /// message naming the quantity, its value, the limit and the cause (`railcontact::validity`:
-/// 1 mm approach, 10 GPa). z = +2 mm (approach ≈ 1.8 mm, Fz ≈ 10 MN with Hertz) warns too;
+/// a patch's approach above 1 mm). z = +2 mm (approach ≈ 1.8 mm, Fz ≈ 10 MN with Hertz) warns too;
 /// z = +0.5 mm (approach 0.32 mm, within the limit) and the prescribed loads are OK again right
 /// after: the warning does not stick. The lazy evaluation in `fmi2GetReal` and an absurd start
 /// value at `fmi2ExitInitializationMode` warn the same way.
@@ -689,6 +689,30 @@ fn implausible_states_warn_with_finite_outputs() {
             run.f.warnings()
         );
         assert!(run.f.errors().is_empty(), "{ctx}: {:?}", run.f.errors());
+    }
+
+    // Severe but real: 300 kN per wheel in flange contact (y = -8 mm, yaw 4 mrad) is OK for
+    // every normal model (approaches 0.49-0.65 mm, pmax up to 10 GPa, well inside the limit).
+    for nm in NORMAL_MODELS {
+        let mut run = Run::new(initialized(
+            wrc(),
+            &name(&[&"heavyFlange", &nm]),
+            &models(nm, 1),
+        ));
+        run.step_ok(&[
+            ("y", -0.008),
+            ("yaw", 0.004),
+            ("Qleft", 3e5),
+            ("Qright", 3e5),
+        ]);
+        assert!(run.f.warnings().is_empty(), "{:?}", run.f.warnings());
+        let flange = (1..=run.f.integer("left.nPatches"))
+            .map(|k| run.f.real(&format!("left.p{k}.contactAngle")))
+            .fold(0.0f64, f64::max);
+        assert!(
+            flange > 0.6,
+            "normalModel {nm}: no flange contact ({flange} rad)"
+        );
     }
 
     // Hertz: the message's numbers are the outputs' (the approach of the deepest patch).

@@ -82,10 +82,11 @@ Exit codes:
      value or line, and the reason)
   2  (solve) the step is refused: the pose has no contact inside the profiles, or the normal
      model cannot carry the prescribed load
-  3  implausible contact state: the outputs are printed, but a patch's penetration exceeds
-     1 mm or its pmax 10 GPa, far beyond elastic half-space contact (e.g. a prescribed
-     position z that pushes a wheel millimetres into the rail); stderr names the quantity,
-     its value, the limit and the likely cause (solve; sweep if any row is marked)
+  3  implausible contact state: the outputs are printed, but a patch's penetration (normal
+     approach) exceeds 1 mm, far beyond elastic half-space contact (e.g. a prescribed
+     position z that pushes a wheel millimetres into the rail, or a wheel load of
+     meganewtons); stderr names the wheel, patch, quantity, value, limit and likely cause
+     (solve; sweep if any row is marked)
 ";
 
 /// Strips per patch in `solve`'s strip tables of Hertz patches.
