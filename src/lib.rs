@@ -31,6 +31,7 @@ pub mod strip_fastsim;
 pub mod stripes;
 pub mod strips;
 pub mod track;
+pub mod validity;
 pub mod wheel_strips;
 pub mod wheelset;
 

@@ -246,6 +246,45 @@ fn malformed_profile_file_names_file_line_and_reason() {
     assert!(err.contains(&located), "{err}");
 }
 
+/// A wheel profile with its flange on the field side (the benchmark wheel file with its
+/// `mirror.y` switched off) exits with 1 and says so, naming the parameter and the file; the
+/// unmodified file solves.
+#[test]
+fn a_wheel_with_its_flange_on_the_wrong_side_exits_with_1() {
+    let benchmark = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/profiles/MBench_S1002_v3.prw");
+    let text = std::fs::read_to_string(&benchmark).expect("the shared benchmark wheel");
+    let unmirrored = text.replacen("mirror.y       =  1", "mirror.y       =  0", 1);
+    assert_ne!(unmirrored, text, "the benchmark file sets mirror.y = 1");
+    let wheel = temp_file("unmirrored.prw", &unmirrored);
+    let case = temp_file(
+        "unmirrored.json",
+        "{\"wheelProfile\": \"unmirrored.prw\", \"railProfile\": \"UIC60\"}",
+    );
+    let o = run(&["solve", case.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(o.stdout.is_empty());
+    for part in [
+        "wheelProfile = \"".to_string(),
+        format!("profile file '{}', line ", wheel.display()),
+        "the flange (its tip 30.6 mm high at y = +54.9 mm) lies on the field side".to_string(),
+        "the profile is not mirrored".to_string(),
+        "toggle mirror.y".to_string(),
+    ] {
+        assert!(err.contains(&part), "{part:?} in {err}");
+    }
+    let good = temp_file(
+        "benchmark_wheel.json",
+        &format!(
+            "{{\"wheelProfile\": {}}}",
+            json::quote(benchmark.to_str().unwrap())
+        ),
+    );
+    let o = run(&["solve", good.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
 #[test]
 fn pose_off_the_rail_exits_with_2() {
     // On standard gauge the built-in S1002 still finds the rail at |y| <= 0.05 (its flange tip
@@ -325,6 +364,66 @@ fn sweep_prints_a_header_and_one_row_per_shift() {
     assert!(stderr(&o).contains("y = 0.2 is outside the allowed range [-0.05, 0.05] [m]"));
 }
 
+/// An implausible contact state (`railcontact::validity`: a patch's approach above 1 mm) —
+/// here the prescribed position z = +50 mm, inside the declared range — exits with 3: the JSON
+/// with finite outputs on stdout (the same numbers as the FMU's model), the warning on stderr
+/// naming the quantity, its value, the limit and the cause. z = +0.5 mm (approach 0.32 mm) is
+/// plausible: exit 0. `sweep` marks the rows and exits with 3, too.
+#[test]
+fn implausible_state_exits_with_3_and_prints_the_outputs() {
+    let case = temp_file("deep.json", "{\"verticalMode\": 2, \"z\": 0.05}");
+    let o = run(&["solve", case.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(3), "{err}");
+    let doc = json::parse(&stdout(&o)).unwrap_or_else(|e| panic!("invalid JSON: {e}"));
+    check_solution(&doc);
+    let penetration = real(&doc, "left.p1.penetration");
+    assert!(penetration > 1e-3, "{penetration}");
+    for part in [
+        "railcontact: warning: implausible contact state: left wheel, patch 1:".to_string(),
+        format!("penetration = {penetration:.4e} m exceeds the limit 1e-3 m"),
+        "the prescribed position z = 0.05 m (verticalMode = 2) pushes the left wheel".to_string(),
+        "not physical".to_string(),
+    ] {
+        assert!(err.contains(&part), "{part:?} in {err}");
+    }
+
+    let fine = temp_file("shallow.json", "{\"verticalMode\": 2, \"z\": 0.0005}");
+    let o = run(&["solve", fine.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+
+    let o = run(&[
+        "sweep",
+        case.to_str().unwrap(),
+        "--from",
+        "0",
+        "--to",
+        "0.001",
+        "--step",
+        "0.001",
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains("2 of the shifts give implausible contact states"),
+        "{err}"
+    );
+    let text = stdout(&o);
+    let rows: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    for row in rows {
+        assert!(
+            row.contains(" -- warning: implausible contact state"),
+            "{row}"
+        );
+    }
+}
+
 #[test]
 fn help_and_bad_arguments() {
     for args in [&["--help"][..], &["-h"], &["help"], &["solve", "--help"]] {
@@ -334,6 +433,7 @@ fn help_and_bad_arguments() {
         assert!(
             text.contains("railcontact solve [CASE.json]") && text.contains("railcontact sweep")
         );
+        assert!(text.contains("Exit codes:") && text.contains("3  implausible contact state"));
     }
     for args in [
         &[][..],

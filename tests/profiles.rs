@@ -377,3 +377,331 @@ fn smoothing_a_noisy_rail_restores_the_crown_curvature() {
     assert!(noise < 0.3, "{noise}");
     assert!(worst_r > 0.5, "{worst_r}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Plausibility checks (railcontact::profile::checks): files that parse but cannot be right.
+
+/// Two-column CSV text (mm) of `p`'s points, each mapped by `f` (y, z in mm → y, z in mm).
+fn csv_of(p: &Profile, mut f: impl FnMut(usize, f64, f64) -> (f64, f64)) -> String {
+    let (y, z) = p.points();
+    let mut text = String::from("y [mm],z [mm]\n");
+    for (i, (&a, &b)) in y.iter().zip(z).enumerate() {
+        let (a, b) = f(i, a * MM, b * MM);
+        text += &format!("{a},{b}\n");
+    }
+    text
+}
+
+/// Asserts that `path` is refused with a message that names the file and contains every part.
+#[track_caller]
+fn expect_refused(path: &Path, kind: Option<ProfileKind>, smoothing: f64, parts: &[&str]) {
+    let e = Profile::from_file(path, kind, smoothing)
+        .map(|_| ())
+        .expect_err(&format!("{} must be refused", path.display()));
+    let text = e.to_string();
+    assert!(
+        text.starts_with(&format!("profile file '{}'", path.display())),
+        "{text}"
+    );
+    for part in parts {
+        assert!(text.contains(part), "{part:?} in {text}");
+    }
+}
+
+/// The benchmark wheel and rail (file points, ascending y).
+fn bench_pair() -> (Profile, Profile) {
+    (
+        Profile::from_file(&bench("MBench_S1002_v3.prw"), None, 0.0).unwrap(),
+        Profile::from_file(&bench("MBench_UIC60_v3.prr"), None, 0.0).unwrap(),
+    )
+}
+
+/// Clean profiles still load and pass every check: the built-ins, the three benchmark files at
+/// smoothing lengths 0 … 10 mm (the parameter's range), and MiniProf-style measurements — the
+/// built-in UIC60 head and the benchmark wheel with σ = 2 µm Gaussian scatter, written with four
+/// decimals (0.1 µm) as a MiniProf text `.ban` and a CSV, and the wheel with a sharp-cornered
+/// field-side face — interpolated and smoothed. The scatter gives point offsets of ~3 µm, ten
+/// times below the 0.03 mm defect threshold (checks.rs).
+#[test]
+fn clean_profiles_pass_the_plausibility_checks() {
+    for name in ["S1002", "UIC60", "60E1"] {
+        Profile::builtin(name)
+            .unwrap()
+            .check_plausibility()
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+    for file in [
+        "MBench_S1002_v3.prw",
+        "MBench_UIC60_v3.prr",
+        "MBench_UIC60_v3.ban",
+    ] {
+        for smoothing in [0.0, 1e-3, 2e-3, 1e-2] {
+            Profile::from_file(&bench(file), None, smoothing)
+                .unwrap_or_else(|e| panic!("{file}, smoothing {smoothing}: {e}"));
+        }
+    }
+    let mut rng = Lcg(2024);
+    let mut scatter = move || {
+        let g: f64 = (0..12)
+            .map(|_| (rng.next() as f64) / (1u64 << 31) as f64)
+            .sum::<f64>()
+            - 6.0;
+        2e-3 * g // mm
+    };
+    let rail = Profile::builtin("UIC60").unwrap();
+    let (y, z) = rail.points();
+    let mut ban = format!(
+        "Filename=measured.ban\nProgramName=MiniProf\nXYPoints={}\nXOffset=0.0000\n\
+         YOffset=0.0000\nColumnDef=X,Y\n",
+        y.len()
+    );
+    for (&a, &b) in y.iter().zip(z) {
+        ban += &format!("{:.4}\t{:.4}\n", -a * MM, b * MM + scatter());
+    }
+    let ban = temp_file("measured.ban", ban.as_bytes());
+    let (wheel, _) = bench_pair();
+    let wheel_csv = csv_of(&wheel, |_, a, b| {
+        (
+            (a * 1e4).round() / 1e4,
+            ((b + scatter()) * 1e4).round() / 1e4,
+        )
+    });
+    let wheel_csv = temp_file("measured_wheel.csv", wheel_csv.as_bytes());
+    // A measured wheel often ends with a chamfer and its field-side face, with sharp corners
+    // (here a 45° chamfer from +60 to +65 mm, then 15 mm straight down): outside the contact
+    // region, so they pass (an interpolating spline bends at the corners with radii < 1 mm).
+    let mut with_face = csv_of(&wheel, |_, a, b| (a, b));
+    let (wy, wz) = wheel.points();
+    let (y_end, z_end) = (wy[wy.len() - 1] * MM, wz[wz.len() - 1] * MM);
+    for k in 1..=20 {
+        let d = 0.25 * f64::from(k);
+        with_face += &format!("{},{}\n", y_end + d, z_end - d);
+    }
+    for k in 1..=30 {
+        let (y, z) = (
+            y_end + 5.0 + 1e-4 * f64::from(k),
+            z_end - 5.0 - 0.5 * f64::from(k),
+        );
+        with_face += &format!("{y},{z}\n");
+    }
+    let with_face = temp_file("wheel_with_face.csv", with_face.as_bytes());
+    for smoothing in [0.0, 1e-3] {
+        Profile::from_file(&ban, None, smoothing).unwrap_or_else(|e| panic!("{e}"));
+        Profile::from_file(&wheel_csv, Some(ProfileKind::Wheel), smoothing)
+            .unwrap_or_else(|e| panic!("{e}"));
+        Profile::from_file(&with_face, Some(ProfileKind::Wheel), smoothing)
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
+}
+
+/// A wheel profile with its flange on the field side (not mirrored into the wheel frame, where
+/// the flange lies at negative y) is refused naming the flange tip's line, with the fix: as a
+/// CSV with y → −y, and as the benchmark Simpack file with its `mirror.y` switched off. The same
+/// points built in memory fail `check_plausibility`, naming the point.
+#[test]
+fn a_wheel_with_its_flange_on_the_field_side_is_refused() {
+    let (wheel, _) = bench_pair();
+    let mirrored = temp_file(
+        "mirrored_wheel.csv",
+        csv_of(&wheel, |_, a, b| (-a, b)).as_bytes(),
+    );
+    // The tip (28 mm above the taping line, 30.6 mm above the lowest point) at y = −54.9 mm
+    // in the benchmark frame, so +54.9 mm mirrored.
+    expect_refused(
+        &mirrored,
+        Some(ProfileKind::Wheel),
+        0.0,
+        &[
+            "the flange (its tip 30.6 mm high at y = +54.9 mm) lies on the field side",
+            "the profile is not mirrored",
+            "mirror it (y -> -y",
+        ],
+    );
+    let text = std::fs::read_to_string(bench("MBench_S1002_v3.prw")).unwrap();
+    let unmirrored = text.replacen("mirror.y       =  1", "mirror.y       =  0", 1);
+    assert_ne!(unmirrored, text, "the benchmark file sets mirror.y = 1");
+    let unmirrored = temp_file("unmirrored.prw", unmirrored.as_bytes());
+    expect_refused(
+        &unmirrored,
+        None,
+        1e-3,
+        &["line ", "lies on the field side", "toggle mirror.y"],
+    );
+    let (y, z) = wheel.points();
+    let flipped: Vec<f64> = y.iter().map(|v| -v).collect();
+    let p = Profile::from_points("flipped", ProfileKind::Wheel, &flipped, z, 0.0).unwrap();
+    let e = p.check_plausibility().unwrap_err();
+    assert!(e.to_string().contains("lies on the field side"), "{e}");
+    assert!(matches!(
+        e.location,
+        railcontact::profile::Location::Point(_)
+    ));
+}
+
+/// Coordinates in metres read as mm: the wheel spans 0.13 mm, the rail 0.074 mm (limit 1 mm).
+#[test]
+fn profiles_in_metres_are_refused() {
+    let (wheel, rail) = bench_pair();
+    for (name, p, kind) in [
+        ("wheel_m.csv", &wheel, ProfileKind::Wheel),
+        ("rail_m.txt", &rail, ProfileKind::Rail),
+    ] {
+        let path = temp_file(name, csv_of(p, |_, a, b| (a / MM, b / MM)).as_bytes());
+        expect_refused(
+            &path,
+            Some(kind),
+            0.0,
+            &[
+                "laterally, where a wheel profile spans ~130 mm",
+                "the values look like metres",
+                "multiply by 1000",
+            ],
+        );
+    }
+}
+
+/// A truncated point block: a Simpack file cut in the middle of its points (no `point.end`), the
+/// first or last half of the wheel's rows (the running surface
+/// around the taping line, −20 … +20 mm, is cut), the first half of the rail's rows (the field
+/// side of the head is missing), and the rail with ten crown rows deleted (a 3.7 mm hole) or
+/// only every tenth row kept (decimated: gaps of 4–5 mm). The three quarters of the wheel that
+/// keep its running surface still load.
+#[test]
+fn truncated_and_gappy_point_blocks_are_refused() {
+    let (wheel, rail) = bench_pair();
+    let n = wheel.points().0.len();
+    let keep = |p: &Profile, name: &str, rows: &dyn Fn(usize) -> bool| -> PathBuf {
+        let (y, z) = p.points();
+        let mut text = String::new();
+        for i in (0..y.len()).filter(|&i| rows(i)) {
+            text += &format!("{} {}\n", y[i] * MM, z[i] * MM);
+        }
+        temp_file(name, text.as_bytes())
+    };
+    let wheel_kind = Some(ProfileKind::Wheel);
+    // The benchmark wheel file cut after a line in the middle of its point block.
+    let text = std::fs::read_to_string(bench("MBench_S1002_v3.prw")).unwrap();
+    let end = text[..text.len() / 2].rfind('\n').unwrap() + 1;
+    let cut = temp_file("cut.prw", &text.as_bytes()[..end]);
+    expect_refused(
+        &cut,
+        None,
+        0.0,
+        &["'point.begin' has no matching 'point.end': the file looks truncated"],
+    );
+    for (name, rows) in [
+        ("wheel_head.txt", &(|i| i < n / 2) as &dyn Fn(usize) -> bool),
+        ("wheel_tail.txt", &|i| i >= n / 2),
+    ] {
+        expect_refused(
+            &keep(&wheel, name, rows),
+            wheel_kind,
+            0.0,
+            &[
+                "the wheel profile covers only y = ",
+                "not the running surface around the taping line",
+                "looks truncated",
+            ],
+        );
+    }
+    Profile::from_file(
+        &keep(&wheel, "wheel_3q.txt", &|i| i < 3 * n / 4),
+        wheel_kind,
+        0.0,
+    )
+    .unwrap();
+    let m = rail.points().0.len();
+    let rail_kind = Some(ProfileKind::Rail);
+    expect_refused(
+        &keep(&rail, "rail_half.txt", &|i| i < m / 2),
+        rail_kind,
+        0.0,
+        &[
+            "descends only 0.0 mm below its highest point on the field (+y) side",
+            "looks truncated",
+        ],
+    );
+    // Rows 200..210 lie on the gauge-side R80/R13 (y ≈ −26 … −23 mm, 0.3–0.5 mm apart); the
+    // error names the first row after the hole (index 210, on line 201).
+    expect_refused(
+        &keep(&rail, "rail_hole.txt", &|i| !(200..210).contains(&i)),
+        rail_kind,
+        0.0,
+        &[
+            "line 201: no points between y = -26.",
+            "a gap of 3.",
+            "points are missing",
+        ],
+    );
+    expect_refused(
+        &keep(&rail, "rail_decimated.txt", &|i| i % 10 == 0),
+        rail_kind,
+        0.0,
+        &["no points between", "at most 3 mm are allowed", "decimated"],
+    );
+}
+
+/// Steps and spikes: a 0.5 mm step across the benchmark rail's crown (all points beyond
+/// y = 3 mm lowered), a 0.1 mm spike on one crown point and on one wheel tread point. An
+/// interpolating spline bends there with radii of 0.3–0.5 mm: refused, naming the point (the
+/// spike itself, the middle of the step) and suggesting a smoothing length; with that length,
+/// and with the usual 1 mm, the files load.
+#[test]
+fn steps_and_spikes_are_refused_unless_the_smoothing_absorbs_them() {
+    let (wheel, rail) = bench_pair();
+    let (ry, _) = rail.points();
+    let (wy, _) = wheel.points();
+    let crown = ry.iter().position(|&v| v > 2e-3).unwrap();
+    let tread = wy.iter().position(|&v| v > 5e-3).unwrap();
+    let cases = [
+        (
+            "stepped_rail.csv",
+            ProfileKind::Rail,
+            csv_of(&rail, |_, a, b| (a, if a > 3.0 { b + 0.5 } else { b })),
+            0.15,
+        ),
+        (
+            "spiked_rail.csv",
+            ProfileKind::Rail,
+            csv_of(&rail, |i, a, b| (a, if i == crown { b + 0.1 } else { b })),
+            0.1,
+        ),
+        (
+            "spiked_wheel.csv",
+            ProfileKind::Wheel,
+            csv_of(&wheel, |i, a, b| (a, if i == tread { b - 0.1 } else { b })),
+            0.1,
+        ),
+    ];
+    for (name, kind, text, offset_mm) in cases {
+        let path = temp_file(name, text.as_bytes());
+        let e = Profile::from_file(&path, Some(kind), 0.0).unwrap_err();
+        let m = e.to_string();
+        for part in [
+            "a step or spike at y = ",
+            "off the curve through its neighbours",
+            "(profileSmoothing = 0 m) bends there with a radius of 0.",
+            "set profileSmoothing = ",
+        ] {
+            assert!(m.contains(part), "{name}: {part:?} in {m}");
+        }
+        let ErrorReason::StepOrSpike {
+            offset_mm: found,
+            suggestion_m: Some(suggested),
+            radius_mm,
+            ..
+        } = e.reason
+        else {
+            panic!("{name}: {m}");
+        };
+        // The spike's own offset is its height (the curve through its neighbours is the clean
+        // profile); a step's middle point lies ~40 % of the step off (the neighbours' cubic).
+        assert!(found >= offset_mm * 0.95, "{name}: {found} mm");
+        assert!(radius_mm < 2.0, "{name}: {radius_mm} mm");
+        assert!(e.line().is_some(), "{name}: {m}");
+        for smoothing in [suggested, 1e-3] {
+            Profile::from_file(&path, Some(kind), smoothing)
+                .unwrap_or_else(|e| panic!("{name}, smoothing {smoothing}: {e}"));
+        }
+    }
+}

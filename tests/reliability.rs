@@ -262,6 +262,27 @@ fn write(dir: &Path, file: &str, text: &[u8]) -> String {
     p.to_string_lossy().into_owned()
 }
 
+/// The shared benchmark profile `file` (e.g. `MBench_S1002_v3.prw`).
+fn benchmark(file: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/profiles")
+        .join(file)
+}
+
+/// The benchmark rail as CSV text (mm) with each point mapped by `f` (y, z in mm).
+fn benchmark_rail_csv(f: impl Fn(f64, f64) -> (f64, f64)) -> Vec<u8> {
+    let rail =
+        railcontact::profile::Profile::from_file(&benchmark("MBench_UIC60_v3.prr"), None, 0.0)
+            .expect("the shared benchmark rail");
+    let (y, z) = rail.points();
+    let mut text = String::from("y,z\n");
+    for (&a, &b) in y.iter().zip(z) {
+        let (a, b) = f(a * 1e3, b * 1e3);
+        text += &format!("{a},{b}\n");
+    }
+    text.into_bytes()
+}
+
 /// The shared benchmark wheel file with line `line` (1-based) replaced by `text`.
 fn benchmark_wheel_with(line: usize, text: &str) -> Vec<u8> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles/MBench_S1002_v3.prw");
@@ -290,6 +311,26 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
     let open_block = write(&dir, "open.prr", b"point.begin\n1 2\n3 4\n");
     let nan = write(&dir, "nan.csv", b"y z\n0 0\n1 nan\n2 0\n3 0\n");
     let empty = write(&dir, "empty.prw", b"");
+    // Parse cleanly, but fail the plausibility checks (railcontact::profile::checks).
+    let benchmark_wheel = std::fs::read_to_string(benchmark("MBench_S1002_v3.prw"))
+        .expect("the shared benchmark wheel");
+    let unmirrored = write(
+        &dir,
+        "unmirrored.prw",
+        benchmark_wheel
+            .replacen("mirror.y       =  1", "mirror.y       =  0", 1)
+            .as_bytes(),
+    );
+    let stepped = write(
+        &dir,
+        "stepped.csv",
+        &benchmark_rail_csv(|y, z| (y, if y > 3.0 { z + 0.5 } else { z })),
+    );
+    let metres = write(
+        &dir,
+        "metres.csv",
+        &benchmark_rail_csv(|y, z| (y / 1e3, z / 1e3)),
+    );
     let missing = dir
         .join("does-not-exist.prw")
         .to_string_lossy()
@@ -338,6 +379,30 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
             "wheelProfile",
             empty.clone(),
             vec![empty.clone(), "missing point block".into()],
+        ),
+        (
+            "wheelProfile",
+            unmirrored.clone(),
+            vec![
+                unmirrored.clone(),
+                "the flange (its tip 30.6 mm high at y = +54.9 mm) lies on the field side".into(),
+                "the profile is not mirrored".into(),
+                "toggle mirror.y".into(),
+            ],
+        ),
+        (
+            "railProfile",
+            stepped.clone(),
+            vec![
+                stepped.clone(),
+                "a step or spike at y = ".into(),
+                "set profileSmoothing = 0.0005 m or more".into(),
+            ],
+        ),
+        (
+            "railProfile",
+            metres.clone(),
+            vec![metres.clone(), "the values look like metres".into()],
         ),
         (
             "wheelProfile",
@@ -404,6 +469,30 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
         assert_eq!(f.step(0.0, H), OK);
         f.outputs();
     }
+}
+
+/// A profile defect that the smoothing absorbs is no error: the benchmark rail with a 0.5 mm
+/// step across its crown (refused at profileSmoothing = 0, test above) initializes and steps
+/// with the usual 1 mm smoothing, balancing the wheel load.
+#[test]
+fn a_step_absorbed_by_the_smoothing_initializes() {
+    let dir = temp_dir("absorbed");
+    let stepped = write(
+        &dir,
+        "stepped.csv",
+        &benchmark_rail_csv(|y, z| (y, if y > 3.0 { z + 0.5 } else { z })),
+    );
+    let mut run = Run::new(initialized(
+        wrc(),
+        "absorbedStep",
+        &[
+            ("railProfile", P::S(stepped)),
+            ("railInclination", P::R(0.0)),
+            ("profileSmoothing", P::R(1e-3)),
+        ],
+    ));
+    run.step_ok(&[]);
+    assert_balanced(&run.f, "right", Q, "stepped rail, 1 mm smoothing");
 }
 
 #[test]
@@ -543,12 +632,123 @@ fn tiny_and_large_loads() {
                     }
                 }
             }
-            // The largest allowed load: a documented status (OK) and finite outputs.
+            // The largest allowed load, 10 MN: the documented status (fmi2Warning: the approach,
+            // 1.7 mm with Hertz, is beyond the 1 mm of `railcontact::validity`), a message
+            // naming the load, and finite outputs.
             let s = run.step(&[("Qleft", 1e7), ("Qright", 1e7)]);
-            assert_eq!(s, OK, "{ctx}: {:?}", run.f.messages());
+            assert_eq!(s, WARNING, "{ctx}: {:?}", run.f.messages());
+            run.f.assert_warning_logged(&[
+                "implausible contact state",
+                "limit",
+                "= 10000000 N is far beyond wheel loads",
+            ]);
             run.f.outputs();
         }
     }
+}
+
+/// A prescribed position far into the rail — z = +50 mm, inside the declared range of `z` —
+/// is not answered with fmi2OK: `fmi2DoStep` returns fmi2Warning with finite outputs and a
+/// message naming the quantity, its value, the limit and the cause (`railcontact::validity`:
+/// a patch's approach above 1 mm). z = +2 mm (approach ≈ 1.8 mm, Fz ≈ 10 MN with Hertz) warns too;
+/// z = +0.5 mm (approach 0.32 mm, within the limit) and the prescribed loads are OK again right
+/// after: the warning does not stick. The lazy evaluation in `fmi2GetReal` and an absurd start
+/// value at `fmi2ExitInitializationMode` warn the same way.
+#[test]
+fn implausible_states_warn_with_finite_outputs() {
+    for nm in NORMAL_MODELS {
+        let ctx = format!("normalModel {nm}");
+        let mut params = models(nm, 1);
+        params.push(("verticalMode", P::I(2)));
+        let mut run = Run::new(initialized(wrc(), &name(&[&"implausible", &nm]), &params));
+        for (z, expected) in [(0.05, WARNING), (5e-4, OK), (0.002, WARNING), (5e-4, OK)] {
+            let s = run.step(&[("z", z)]);
+            assert_eq!(s, expected, "{ctx}, z = {z}: {:?}", run.f.messages());
+            let (get, out) = run.f.try_outputs();
+            assert_eq!(
+                get, OK,
+                "{ctx}, z = {z}: outputs read once the step is done"
+            );
+            run.f.assert_finite(&out);
+            if expected == WARNING {
+                run.t += H; // a warning is a completed step
+            }
+        }
+        run.f.assert_warning_logged(&[
+            "step at t = 0:",
+            "implausible contact state:",
+            "wheel, patch 1:",
+            "exceeds the limit",
+            "prescribed position z = 0.05 m (verticalMode = 2) pushes the",
+            "mm into the rail",
+            "not physical",
+        ]);
+        assert!(
+            run.f.warnings().iter().any(|m| m.contains("z = 0.002 m")),
+            "{ctx}: {:?}",
+            run.f.warnings()
+        );
+        assert!(run.f.errors().is_empty(), "{ctx}: {:?}", run.f.errors());
+    }
+
+    // Severe but real: 300 kN per wheel in flange contact (y = -8 mm, yaw 4 mrad) is OK for
+    // every normal model (approaches 0.49-0.65 mm, pmax up to 10 GPa, well inside the limit).
+    for nm in NORMAL_MODELS {
+        let mut run = Run::new(initialized(
+            wrc(),
+            &name(&[&"heavyFlange", &nm]),
+            &models(nm, 1),
+        ));
+        run.step_ok(&[
+            ("y", -0.008),
+            ("yaw", 0.004),
+            ("Qleft", 3e5),
+            ("Qright", 3e5),
+        ]);
+        assert!(run.f.warnings().is_empty(), "{:?}", run.f.warnings());
+        let flange = (1..=run.f.integer("left.nPatches"))
+            .map(|k| run.f.real(&format!("left.p{k}.contactAngle")))
+            .fold(0.0f64, f64::max);
+        assert!(
+            flange > 0.6,
+            "normalModel {nm}: no flange contact ({flange} rad)"
+        );
+    }
+
+    // Hertz: the message's numbers are the outputs' (the approach of the deepest patch).
+    let mut params = models(1, 1);
+    params.push(("verticalMode", P::I(2)));
+    let mut run = Run::new(initialized(wrc(), "implausible/numbers", &params));
+    assert_eq!(run.step(&[("z", 0.05)]), WARNING);
+    let penetration = run.f.real("left.p1.penetration");
+    assert!(penetration > 0.04, "{penetration}");
+    run.f.assert_warning_logged(&[
+        &format!("left wheel, patch 1: penetration = {penetration:.4e} m exceeds the limit 1e-3 m"),
+        &format!(
+            "pushes the left wheel {:.3} mm into the rail",
+            penetration * 1e3
+        ),
+    ]);
+
+    // Evaluated lazily by fmi2GetReal after the input changed: fmi2Warning there, too.
+    let f = initialized(wrc(), "implausible/get", &params);
+    assert_eq!(f.set_real("z", 0.05), OK);
+    let (s, out) = f.try_outputs();
+    assert_eq!(s, WARNING, "{:?}", f.messages());
+    f.assert_finite(&out);
+    f.assert_warning_logged(&["fmi2Get: implausible contact state"]);
+
+    // An absurd start: fmi2ExitInitializationMode warns, and the instance steps.
+    let f = Fmu::new(wrc(), "implausible/init");
+    assert_eq!(f.set_integer("verticalMode", 2), OK);
+    assert_eq!(f.set_real("z", 0.05), OK);
+    assert_eq!(f.setup(None), OK);
+    assert_eq!(f.enter(), OK);
+    assert_eq!(f.exit(), WARNING, "{:?}", f.messages());
+    f.assert_warning_logged(&["fmi2ExitInitializationMode: implausible contact state"]);
+    assert_eq!(f.step(0.0, H), WARNING);
+    assert_eq!(f.set_real("z", 5e-4), OK);
+    assert_eq!(f.step(H, H), OK, "{:?}", f.messages());
 }
 
 /// Runs `body` on its own thread and fails if it has not returned after `seconds` (a hang in

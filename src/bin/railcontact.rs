@@ -12,13 +12,14 @@
 //! semi-axes and curvatures are not FMU outputs).
 //!
 //! Exit codes: 0 success, 1 usage / case / profile / value error, 2 step refused (no contact
-//! inside the profiles, or a load the normal model cannot carry).
+//! inside the profiles, or a load the normal model cannot carry), 3 implausible contact state
+//! (outputs printed, but beyond elastic half-space contact: [`railcontact::validity`]).
 
 use railcontact::case_json as json;
 #[path = "railcontact/report.rs"]
 mod report;
 
-use railcontact::fmi::model::{InstanceContext, Model, ModelError};
+use railcontact::fmi::model::{Evaluation, InstanceContext, Model, ModelError};
 use railcontact::fmi::variables::{Causality, Values, VarInfo, VarType};
 use railcontact::models::wheel_rail_contact::{self as wrc, generated::var, INFO};
 use railcontact::profile::{Profile, ProfileKind, BUILTIN_NAMES};
@@ -60,7 +61,8 @@ sweep   Evaluates the model over the lateral shift y from Y0 to Y1 in steps of D
         default -0.002 to 0.008, step 0.0005; the case's y is ignored) and prints a table per
         wheel: number of patches, then per patch yRail [mm], contact angle [rad], normal force
         Fn [kN], rolling radius [mm], and the wheel's total lateral force Fy [kN]. Shifts where
-        the wheel leaves the profiles get a note instead of numbers.
+        the wheel leaves the profiles get a note instead of numbers; implausible states (see
+        exit code 3) get their numbers and a warning at the end of the row.
 report  Reproduces the seed study's validation: writes SVG and PNG figures (patch outlines,
         pressure per strip, pure-spin traction planar and non-planar, STRIPES over lateral
         shifts, creep curves), report.md and errors.csv into --out DIR (default report/).
@@ -70,9 +72,21 @@ report  Reproduces the seed study's validation: writes SVG and PNG figures (patc
         directory (default ../shared/reference if it exists; without it no error table).
         --quick draws the creep curves at the reference creepages only. Progress on stderr.
 
-Exit codes: 0 success; 1 bad arguments, case file, profile file or value; 2 (solve) the step
-is refused: the pose has no contact inside the profiles, or the normal model cannot carry the
-prescribed load.
+Profile files are checked when loaded (units, flange side, coverage of the running surface,
+gaps, steps and spikes the smoothing cannot absorb); a failed check is exit code 1 with the
+file, the reason and the fix.
+
+Exit codes:
+  0  success
+  1  bad arguments, case file, profile file or value (the message names the key or file, the
+     value or line, and the reason)
+  2  (solve) the step is refused: the pose has no contact inside the profiles, or the normal
+     model cannot carry the prescribed load
+  3  implausible contact state: the outputs are printed, but a patch's penetration (normal
+     approach) exceeds 1 mm, far beyond elastic half-space contact (e.g. a prescribed
+     position z that pushes a wheel millimetres into the rail, or a wheel load of
+     meganewtons); stderr names the wheel, patch, quantity, value, limit and likely cause
+     (solve; sweep if any row is marked)
 ";
 
 /// Strips per patch in `solve`'s strip tables of Hertz patches.
@@ -81,6 +95,8 @@ const STRIPS: usize = 21;
 const MAX_GRID: usize = 1000;
 /// Most rows a sweep may have.
 const MAX_ROWS: usize = 100_000;
+/// Exit code of an implausible contact state (outputs printed; [`railcontact::validity`]).
+const IMPLAUSIBLE: i32 = 3;
 
 /// Why the command failed, with its exit code.
 #[derive(Debug)]
@@ -162,8 +178,15 @@ fn run() -> Result<i32, Failure> {
                         })?,
                 ),
             };
-            emit(&solve(a.case.as_deref(), grid, traction)?)?;
-            Ok(0)
+            let (text, warning) = solve(a.case.as_deref(), grid, traction)?;
+            emit(&text)?;
+            Ok(match warning {
+                None => 0,
+                Some(m) => {
+                    eprintln!("railcontact: warning: {m}");
+                    IMPLAUSIBLE
+                }
+            })
         }
         "sweep" => {
             let a = positional(rest, &["--from", "--to", "--step"])?;
@@ -180,9 +203,22 @@ fn run() -> Result<i32, Failure> {
                 to: option("--to", 0.008)?,
                 step: option("--step", 0.0005)?,
             };
-            let (table, errors) = sweep(a.case.as_deref(), range)?;
+            let (table, outcome) = sweep(a.case.as_deref(), range)?;
             emit(&table)?;
-            Ok(if errors { 1 } else { 0 })
+            if outcome.warnings > 0 {
+                eprintln!(
+                    "railcontact: warning: {} of the shifts give implausible contact states \
+                     (marked in the table)",
+                    outcome.warnings
+                );
+            }
+            Ok(if outcome.errors {
+                1
+            } else if outcome.warnings > 0 {
+                IMPLAUSIBLE
+            } else {
+                0
+            })
         }
         "report" => report::run(rest),
         other => Err(Failure::Error(format!(
@@ -412,10 +448,18 @@ fn model(values: &Values) -> Result<Box<dyn Model>, Failure> {
 // ---------------------------------------------------------------------------------------------
 // solve
 
-fn solve(case: Option<&str>, grid: Option<usize>, traction: bool) -> Result<String, Failure> {
+/// The JSON text, and the warning of an implausible state (if any).
+fn solve(
+    case: Option<&str>,
+    grid: Option<usize>,
+    traction: bool,
+) -> Result<(String, Option<String>), Failure> {
     let mut values = load_case(case)?;
     let mut model = model(&values)?;
-    model.evaluate(&mut values, 0.0)?;
+    let warning = match model.evaluate(&mut values, 0.0)? {
+        Evaluation::Ok => None,
+        Evaluation::Warning(m) => Some(m),
+    };
     let (wheelset, patches) = wheelset_result(&values)?;
     check_same(&values, &patches)?;
 
@@ -541,7 +585,7 @@ fn solve(case: Option<&str>, grid: Option<usize>, traction: bool) -> Result<Stri
         out.push_str(if first { "}" } else { "\n  }" });
     }
     out.push_str("\n}\n");
-    Ok(out)
+    Ok((out, warning))
 }
 
 /// The strips of a non-elliptic patch as the model solved them (strips in contact only).
@@ -663,12 +707,21 @@ struct SideRow {
 }
 
 enum Row {
-    Values([SideRow; 2]),
+    /// The outputs, and the warning of an implausible state.
+    Values([SideRow; 2], Option<String>),
     Note(String),
 }
 
-/// Returns the table and whether any row failed with an error (other than leaving the profiles).
-fn sweep(case: Option<&str>, range: SweepRange) -> Result<(String, bool), Failure> {
+/// What went wrong in a sweep's rows.
+struct SweepOutcome {
+    /// A row failed with an error (other than leaving the profiles).
+    errors: bool,
+    /// Rows with an implausible contact state.
+    warnings: usize,
+}
+
+/// Returns the table and what went wrong in its rows.
+fn sweep(case: Option<&str>, range: SweepRange) -> Result<(String, SweepOutcome), Failure> {
     let y_info = INFO.variable("y").expect("input y");
     for (name, x) in [("--from", range.from), ("--to", range.to)] {
         if !y_info.accepts_real(x) {
@@ -700,13 +753,26 @@ fn sweep(case: Option<&str>, range: SweepRange) -> Result<(String, bool), Failur
     let mut model = model(&values)?;
     let mut rows = Vec::new();
     let mut errors = false;
+    let mut warnings = 0;
     for k in 0..=intervals as usize {
         // Rounded to 1e-12 m so that the printed shifts are exact (no "-0.000").
         let y = (range.from + direction * k as f64 * range.step) * 1e12;
         let y = y.round() / 1e12 + 0.0;
         values.set_real(var::y, y);
         let row = match model.evaluate(&mut values, 0.0) {
-            Ok(()) => Row::Values(["left", "right"].map(|side| side_row(&values, side))),
+            Ok(outcome) => {
+                let warning = match outcome {
+                    Evaluation::Ok => None,
+                    Evaluation::Warning(m) => {
+                        warnings += 1;
+                        Some(m)
+                    }
+                };
+                Row::Values(
+                    ["left", "right"].map(|side| side_row(&values, side)),
+                    warning,
+                )
+            }
             Err(ModelError::Discard(m)) => Row::Note(m),
             Err(ModelError::Error(m)) => {
                 errors = true;
@@ -715,7 +781,10 @@ fn sweep(case: Option<&str>, range: SweepRange) -> Result<(String, bool), Failur
         };
         rows.push((y, row));
     }
-    Ok((table(&values, range, &rows), errors))
+    Ok((
+        table(&values, range, &rows),
+        SweepOutcome { errors, warnings },
+    ))
 }
 
 fn side_row(values: &Values, side: &str) -> SideRow {
@@ -739,7 +808,7 @@ fn table(values: &Values, range: SweepRange, rows: &[(f64, Row)]) -> String {
     let groups: [usize; 2] = [0, 1].map(|s| {
         rows.iter()
             .filter_map(|(_, r)| match r {
-                Row::Values(sides) => Some(sides[s].patches.len()),
+                Row::Values(sides, _) => Some(sides[s].patches.len()),
                 Row::Note(_) => None,
             })
             .max()
@@ -793,12 +862,12 @@ fn table(values: &Values, range: SweepRange, rows: &[(f64, Row)]) -> String {
 
     for (y, row) in rows {
         let mut cells = vec![format!("{:.3}", y * 1e3)];
-        match row {
+        let warning = match row {
             Row::Note(note) => {
                 let _ = writeln!(out, "{:>w$} -- {note}", cells[0], w = widths[0]);
                 continue;
             }
-            Row::Values(sides) => {
+            Row::Values(sides, warning) => {
                 for (s, side) in sides.iter().enumerate() {
                     cells.push(side.patches.len().to_string());
                     for k in 0..groups[s] {
@@ -814,14 +883,22 @@ fn table(values: &Values, range: SweepRange, rows: &[(f64, Row)]) -> String {
                     }
                     cells.push(format!("{:.3}", side.fy / 1e3));
                 }
+                warning.as_deref()
             }
-        }
+        };
         let cells: Vec<String> = cells
             .iter()
             .zip(&widths)
             .map(|(c, w)| format!("{c:>w$}"))
             .collect();
-        let _ = writeln!(out, "{}", cells.join(" "));
+        match warning {
+            None => {
+                let _ = writeln!(out, "{}", cells.join(" "));
+            }
+            Some(m) => {
+                let _ = writeln!(out, "{} -- warning: {m}", cells.join(" "));
+            }
+        }
     }
     out
 }

@@ -4,7 +4,7 @@
 //! This file knows nothing about contact mechanics; the C ABI in [`crate::fmi::export`] only
 //! converts pointers to slices and calls the methods here.
 
-use super::model::{InstanceContext, Model, ModelError, ModelInfo};
+use super::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
 use super::variables::{ByteReader, Causality, Values, VarInfo, VarType, Variability};
 use fmi_sys::fmi2::{
     fmi2CallbackLogger, fmi2ComponentEnvironment, fmi2Status, fmi2Status_fmi2Discard,
@@ -237,21 +237,37 @@ impl Instance {
         }
     }
 
-    /// Brings outputs up to date before they are read.
-    fn refresh(&mut self) -> Result<(), ModelError> {
+    /// Brings outputs up to date before they are read. A warning is returned once, by the call
+    /// that evaluated.
+    fn refresh(&mut self) -> Result<Evaluation, ModelError> {
         if self.needs_initialize {
             self.model.initialize(&self.values)?;
             self.needs_initialize = false;
             self.dirty = true;
         }
+        let mut outcome = Evaluation::Ok;
         if self.dirty {
-            self.model.evaluate(&mut self.values, self.time)?;
+            outcome = self.model.evaluate(&mut self.values, self.time)?;
             self.dirty = false;
         }
-        Ok(())
+        Ok(outcome)
     }
 
-    fn refresh_for_get(&mut self, vrs: &[u32]) -> Result<(), fmi2Status> {
+    /// Logs a model warning (`during`: the function or step) and returns `fmi2Warning`; `OK`
+    /// for [`Evaluation::Ok`].
+    fn report(&self, outcome: Evaluation, during: &str) -> fmi2Status {
+        match outcome {
+            Evaluation::Ok => OK,
+            Evaluation::Warning(m) => {
+                self.logger.log(WARNING, &format!("{during}: {m}"));
+                WARNING
+            }
+        }
+    }
+
+    /// Evaluates the outputs if `vrs` reads one and they are out of date: `Ok(OK)`, `Ok(WARNING)`
+    /// (outputs valid, warning logged), or `Err(status)` (failed, nothing to read).
+    fn refresh_for_get(&mut self, vrs: &[u32]) -> Result<fmi2Status, fmi2Status> {
         let reads_output = vrs.iter().any(|&vr| {
             self.info
                 .variables
@@ -265,9 +281,12 @@ impl Instance {
             State::StepFailed | State::Terminated | State::Error
         );
         if !reads_output || settled {
-            return Ok(());
+            return Ok(OK);
         }
-        self.refresh().map_err(|e| self.model_failure(e, "fmi2Get"))
+        match self.refresh() {
+            Ok(outcome) => Ok(self.report(outcome, "fmi2Get")),
+            Err(e) => Err(self.model_failure(e, "fmi2Get")),
+        }
     }
 
     fn model_failure(&mut self, e: ModelError, during: &str) -> fmi2Status {
@@ -288,16 +307,17 @@ impl Instance {
         out: &mut [T],
         read: impl Fn(&Values, usize) -> T,
     ) -> fmi2Status {
-        if let Err(status) = self.refresh_for_get(vrs) {
-            return status;
-        }
+        let status = match self.refresh_for_get(vrs) {
+            Ok(status) => status,
+            Err(status) => return status,
+        };
         for (&vr, slot) in vrs.iter().zip(out.iter_mut()) {
             match self.variable(vr, ty) {
                 Ok(v) => *slot = read(&self.values, v.slot),
                 Err(m) => return self.error(&m),
             }
         }
-        OK
+        status
     }
 
     /// Strings for `fmi2GetString`: pointers stay valid until the next call.
@@ -406,9 +426,9 @@ impl Instance {
         self.needs_initialize = true;
         self.dirty = true;
         match self.refresh() {
-            Ok(()) => {
+            Ok(outcome) => {
                 self.state = State::StepComplete;
-                OK
+                self.report(outcome, "fmi2ExitInitializationMode")
             }
             Err(e) => {
                 let message = format!("initialization failed: {}", e.message());
@@ -448,9 +468,14 @@ impl Instance {
         }
         self.dirty = true;
         match self.refresh() {
-            Ok(()) => {
+            Ok(outcome) => {
                 self.time = end;
                 self.last_successful_time = end;
+                if let Evaluation::Warning(m) = outcome {
+                    self.logger
+                        .log(WARNING, &format!("step at t = {current}: {m}"));
+                    status = WARNING;
+                }
                 status
             }
             Err(ModelError::Discard(m)) => {

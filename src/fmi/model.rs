@@ -17,6 +17,17 @@ pub enum ModelError {
     Discard(String),
 }
 
+/// What a successful evaluation produced.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Evaluation {
+    /// The outputs are computed and valid: `fmi2OK`.
+    Ok,
+    /// The outputs are computed and finite, but the state lies outside the model's validity
+    /// (e.g. an approach far beyond elastic contact): `fmi2Warning` with this message; the
+    /// simulation may continue.
+    Warning(String),
+}
+
 impl ModelError {
     pub fn message(&self) -> &str {
         match self {
@@ -45,8 +56,9 @@ pub trait Model: Send {
     fn initialize(&mut self, values: &Values) -> Result<(), ModelError>;
 
     /// Computes all outputs from the current parameters and inputs. Called from `fmi2DoStep`
-    /// and lazily from `fmi2Get*` after inputs changed. Must not allocate.
-    fn evaluate(&mut self, values: &mut Values, time: f64) -> Result<(), ModelError>;
+    /// and lazily from `fmi2Get*` after inputs changed. Must not allocate (except for the
+    /// message of an [`Evaluation::Warning`]).
+    fn evaluate(&mut self, values: &mut Values, time: f64) -> Result<Evaluation, ModelError>;
 
     /// Appends internal state that is not a variable (warm starts) to an FMU state.
     fn save_state(&self, _out: &mut Vec<u8>) {}

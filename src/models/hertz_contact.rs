@@ -4,7 +4,7 @@
 
 use super::{fastsim_settings, set_output};
 use crate::fastsim::Creepage;
-use crate::fmi::model::{InstanceContext, Model, ModelError, ModelInfo};
+use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::Values;
 use crate::point_contact::{Material, PointContact, PointContactInput};
 
@@ -53,7 +53,7 @@ impl Model for HertzContact {
         Ok(())
     }
 
-    fn evaluate(&mut self, values: &mut Values, _time: f64) -> Result<(), ModelError> {
+    fn evaluate(&mut self, values: &mut Values, _time: f64) -> Result<Evaluation, ModelError> {
         let solver = self
             .solver
             .as_mut()
@@ -89,6 +89,6 @@ impl Model for HertzContact {
         ] {
             set_output(values, v, x)?;
         }
-        Ok(())
+        Ok(Evaluation::Ok)
     }
 }

@@ -1,16 +1,18 @@
 //! FMU `WheelRailContact`: one wheelset on straight track, both wheels, from wheelset kinematics
 //! to creep forces and contact-patch summaries. Variables: `modelDescription/WheelRailContact.json`;
-//! physics: [`crate::wheelset`].
+//! physics: [`crate::wheelset`]. A state beyond elastic half-space contact ([`crate::validity`])
+//! is answered with its outputs and a warning (`fmi2Warning`).
 
 use super::{fastsim_settings, set_output};
 use crate::fastsim::Creepage;
-use crate::fmi::model::{InstanceContext, Model, ModelError, ModelInfo};
+use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::{IntegerVar, RealVar, Values};
 use crate::patch_tangential::TangentialModel;
 use crate::point_contact::Material;
 use crate::profile::{Profile, ProfileKind};
 use crate::strips::NormalModel;
 use crate::track::TrackSetup;
+use crate::validity::validity;
 use crate::wheelset::{
     Creepages, SideResult, Vertical, WarmStart, Wheelset, WheelsetError, WheelsetInput,
     WheelsetResult, WheelsetSettings, MAX_PATCHES,
@@ -391,7 +393,7 @@ impl Model for WheelRailContact {
         Ok(())
     }
 
-    fn evaluate(&mut self, values: &mut Values, _time: f64) -> Result<(), ModelError> {
+    fn evaluate(&mut self, values: &mut Values, _time: f64) -> Result<Evaluation, ModelError> {
         let solver = self
             .solver
             .as_mut()
@@ -409,7 +411,11 @@ impl Model for WheelRailContact {
             }
         }
         write_side(values, false, &self.result.left)?;
-        write_side(values, true, &self.result.right)
+        write_side(values, true, &self.result.right)?;
+        Ok(match validity(&self.result) {
+            None => Evaluation::Ok,
+            Some(implausible) => Evaluation::Warning(implausible.message(&input.vertical)),
+        })
     }
 
     /// The load iteration's warm starts (`wheelset::WarmStart`, left then right): a version

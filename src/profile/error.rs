@@ -87,6 +87,44 @@ pub enum ErrorReason {
     LengthMismatch { y: usize, z: usize },
     /// The spline fit produced non-finite coefficients (should not happen for validated input).
     NumericalFailure,
+    /// The lateral extent is far below any wheel or rail profile's: the numbers look like
+    /// metres read as mm ([`checks`](super::checks) 1).
+    LooksLikeMetres { span_mm: f64 },
+    /// A wheel's flange tip lies on the field side: the profile is not mirrored (checks 2).
+    FlangeOnFieldSide { y_mm: f64, height_mm: f64 },
+    /// A wheel profile does not cover the running surface around the taping line (checks 3).
+    WheelNotCovered {
+        from_mm: f64,
+        to_mm: f64,
+        needed_mm: f64,
+    },
+    /// A rail profile does not descend far enough on one side of its top (checks 3).
+    RailNotCovered {
+        gauge_side: bool,
+        depth_mm: f64,
+        needed_mm: f64,
+        from_mm: f64,
+        to_mm: f64,
+    },
+    /// Neighbouring points too far apart in the contact region (checks 4); the location is the
+    /// point after the gap.
+    PointGap {
+        gap_mm: f64,
+        from_y_mm: f64,
+        to_y_mm: f64,
+        limit_mm: f64,
+    },
+    /// A step or spike that the spline, at the given smoothing length, bends around more
+    /// sharply than any real profile (checks 5); with the smallest smoothing length tried that
+    /// absorbs it, if any.
+    StepOrSpike {
+        y_mm: f64,
+        z_mm: f64,
+        offset_mm: f64,
+        radius_mm: f64,
+        smoothing_m: f64,
+        suggestion_m: Option<f64>,
+    },
 }
 
 impl fmt::Display for ErrorReason {
@@ -125,7 +163,9 @@ impl fmt::Display for ErrorReason {
             ),
             ErrorReason::TooFewPoints { found } => write!(
                 f,
-                "too few points ({found}; at least {} are needed)",
+                "too few points ({found}; at least {} are needed): the point block looks \
+                 truncated or empty; supply the whole profile (measured profiles have hundreds \
+                 of points)",
                 super::MIN_POINTS
             ),
             ErrorReason::TooManyPoints { limit } => {
@@ -142,7 +182,11 @@ impl fmt::Display for ErrorReason {
                 write!(f, "missing point block (no 'point.begin' … 'point.end')")
             }
             ErrorReason::UnterminatedPointBlock => {
-                write!(f, "'point.begin' has no matching 'point.end'")
+                write!(
+                    f,
+                    "'point.begin' has no matching 'point.end': the file looks truncated; \
+                     supply the complete file, its points ended by 'point.end'"
+                )
             }
             ErrorReason::UnexpectedPointEnd => write!(f, "'point.end' without 'point.begin'"),
             ErrorReason::DuplicatePointBlock => write!(f, "a second 'point.begin' block"),
@@ -192,6 +236,93 @@ impl fmt::Display for ErrorReason {
             }
             ErrorReason::NumericalFailure => {
                 write!(f, "the spline fit failed (non-finite coefficients)")
+            }
+            ErrorReason::LooksLikeMetres { span_mm } => write!(
+                f,
+                "the profile spans only {span_mm:.4} mm laterally, where a wheel profile spans \
+                 ~130 mm and a rail head ~70 mm: the values look like metres, but profile files \
+                 are read in mm; write the coordinates in mm (multiply by 1000), or declare the \
+                 unit (Simpack: units.len.f = 1)"
+            ),
+            ErrorReason::FlangeOnFieldSide { y_mm, height_mm } => write!(
+                f,
+                "the flange (its tip {height_mm:.1} mm high at y = {y_mm:+.1} mm) lies on the \
+                 field side (towards +y): the profile is not mirrored. The wheel profile frame \
+                 has y towards the field side and the flange at negative y (docs/conventions.md); \
+                 mirror it (y -> -y; in a Simpack file toggle mirror.y)"
+            ),
+            ErrorReason::WheelNotCovered {
+                from_mm,
+                to_mm,
+                needed_mm,
+            } => write!(
+                f,
+                "the wheel profile covers only y = {from_mm:.1} ... {to_mm:.1} mm, not the running \
+                 surface around the taping line (at least y = -{needed_mm} ... +{needed_mm} mm \
+                 around the origin): the point block looks truncated, or the origin is not at \
+                 the taping line; supply the whole profile with its origin at the taping line \
+                 (docs/conventions.md)"
+            ),
+            ErrorReason::RailNotCovered {
+                gauge_side,
+                depth_mm,
+                needed_mm,
+                from_mm,
+                to_mm,
+            } => write!(
+                f,
+                "the rail profile (y = {from_mm:.1} ... {to_mm:.1} mm) descends only \
+                 {depth_mm:.1} mm below its highest point on the {} side, not the {needed_mm} mm \
+                 that cover the running surface (the head's corners lie ~14 mm below the top): \
+                 the point block looks truncated; supply the whole rail head",
+                if *gauge_side {
+                    "gauge (-y)"
+                } else {
+                    "field (+y)"
+                }
+            ),
+            ErrorReason::PointGap {
+                gap_mm,
+                from_y_mm,
+                to_y_mm,
+                limit_mm,
+            } => write!(
+                f,
+                "no points between y = {from_y_mm:.3} and {to_y_mm:.3} mm: a gap of \
+                 {gap_mm:.2} mm in the running surface, where at most {limit_mm} mm are allowed \
+                 (a contact patch is 5-15 mm wide): points are missing (truncated, deleted or \
+                 decimated data); supply the complete profile"
+            ),
+            ErrorReason::StepOrSpike {
+                y_mm,
+                z_mm,
+                offset_mm,
+                radius_mm,
+                smoothing_m,
+                suggestion_m,
+            } => {
+                write!(
+                    f,
+                    "a step or spike at y = {y_mm:.3} mm, z = {z_mm:.3} mm: the point lies \
+                     {offset_mm:.3} mm off the curve through its neighbours, and the profile \
+                     spline (profileSmoothing = {smoothing_m} m) bends there with a radius of \
+                     {radius_mm:.3} mm, below the {} mm of any real wheel or rail surface; ",
+                    super::checks::MIN_RADIUS_M * 1e3
+                )?;
+                match suggestion_m {
+                    Some(s) => write!(
+                        f,
+                        "repair the data there, or smooth the profile: set profileSmoothing = \
+                         {s} m or more (the smallest smoothing length that absorbs it; 0.001 m \
+                         suits most measured profiles)"
+                    ),
+                    None => write!(
+                        f,
+                        "no smoothing length up to {} m absorbs it: repair the data there",
+                        super::checks::SMOOTHING_CANDIDATES_M
+                            [super::checks::SMOOTHING_CANDIDATES_M.len() - 1]
+                    ),
+                }
             }
         }
     }

@@ -3,7 +3,9 @@
 //!
 //! Sources: physics.md §8 (S1002 polynomials, UIC60 head, Simpack format, benchmark files);
 //! Reinsch (1967) for the smoothing spline. Details and limits in the submodules:
-//! [`spline`] (fit, smoothing length, evaluation), [`s1002`], [`uic60`], [`parse`].
+//! [`spline`] (fit, smoothing length, evaluation), [`s1002`], [`uic60`], [`parse`], [`checks`]
+//! (plausibility of profiles read from files: units, wheel orientation, coverage, gaps, steps
+//! and spikes).
 //!
 //! # The profile frame (fixed; `docs/conventions.md`)
 //!
@@ -40,6 +42,7 @@
 //! smoothed.
 
 pub mod bounds;
+pub mod checks;
 pub mod error;
 pub mod parse;
 pub mod s1002;
@@ -112,6 +115,7 @@ struct Points<'a> {
 impl Profile {
     /// A profile through the points (`y`, `z`) [m] in the profile frame, strictly monotonic in y
     /// (descending input is reversed), smoothed with length `smoothing` [m] (0 = interpolate).
+    /// The plausibility checks of files are not run; [`Profile::check_plausibility`] does.
     pub fn from_points(
         name: &str,
         kind: ProfileKind,
@@ -177,7 +181,9 @@ impl Profile {
     /// Reads a profile file, by extension: `.prr` (Simpack rail), `.prw` (Simpack wheel) — the
     /// header `type` decides if present —, `.ban` (MiniProf text, rail); anything else is
     /// two-column text/CSV in mm, which needs `kind_hint`. A `kind_hint` that contradicts the file
-    /// is an error. `smoothing` as in [`Profile::from_points`].
+    /// is an error. `smoothing` as in [`Profile::from_points`]. The profile must then pass the
+    /// plausibility checks ([`checks`]: units, wheel orientation, coverage, gaps, steps and
+    /// spikes).
     pub fn from_file(
         path: &Path,
         kind_hint: Option<ProfileKind>,
@@ -358,6 +364,8 @@ impl Profile {
         Self::from_raw(path, source, raw, kind, smoothing)
     }
 
+    /// Builds a profile from a file's points and runs the plausibility checks ([`checks`]) on
+    /// it; their errors name the line of the point to blame.
     fn from_raw(
         path: &Path,
         source: &str,
@@ -369,6 +377,15 @@ impl Profile {
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_else(|| path.display().to_string());
+        checks::check_units(&raw.y)
+            .map_err(|reason| ProfileError::new(source, Location::Whole, reason))?;
+        // The points in the profile's ascending order (`build` reverses descending input).
+        let descending = raw.y.len() >= 2 && raw.y[0] > raw.y[1];
+        let (mut lines, mut weights) = (raw.lines.clone(), raw.w.clone());
+        if descending {
+            lines.reverse();
+            weights.reverse();
+        }
         let points = Points {
             loc: raw.lines.iter().map(|&l| Location::Line(l)).collect(),
             y: raw.y,
@@ -376,7 +393,42 @@ impl Profile {
             w: raw.w,
             source,
         };
-        Self::build(&name, kind, points, smoothing)
+        let profile = Self::build(&name, kind, points, smoothing)?;
+        profile.check_shape(&weights).map_err(|finding| {
+            let loc = finding
+                .point
+                .map_or(Location::Whole, |i| Location::Line(lines[i]));
+            ProfileError::new(source, loc, finding.reason)
+        })?;
+        Ok(profile)
+    }
+
+    /// The shape checks ([`checks::check_shape`]) with point weights `weights` (ascending order).
+    fn check_shape(&self, weights: &[f64]) -> Result<(), checks::Finding> {
+        checks::check_shape(
+            self.kind,
+            &self.y,
+            &self.z,
+            weights,
+            self.smoothing,
+            &self.spline,
+        )
+    }
+
+    /// Runs the plausibility checks that files get when they are read ([`checks`]: units, wheel
+    /// orientation, coverage of the running surface, gaps, steps and spikes the smoothing does
+    /// not absorb) on this profile, e.g. one built with [`Profile::from_points`] (which does not
+    /// run them). Errors name the point by its index in ascending y; unit weights are assumed
+    /// for the suggested smoothing length.
+    pub fn check_plausibility(&self) -> Result<(), ProfileError> {
+        let source = format!("profile '{}'", self.name);
+        checks::check_units(&self.y)
+            .map_err(|reason| ProfileError::new(&source, Location::Whole, reason))?;
+        self.check_shape(&vec![1.0; self.y.len()])
+            .map_err(|finding| {
+                let loc = finding.point.map_or(Location::Whole, Location::Point);
+                ProfileError::new(&source, loc, finding.reason)
+            })
     }
 
     /// Validates, orders and fits.
@@ -709,10 +761,15 @@ mod tests {
     /// `from_bytes` (the fuzz targets' entry) reads exactly as `from_file` does, by extension.
     #[test]
     fn from_bytes_reads_as_from_file() {
-        let text = "header.begin\n type = 1\nheader.end\npoint.begin\n-2 1\n-1 0.25\n0 0\n\
-                    1 0.25\n2 1\npoint.end\n";
+        // A flangeless wheel z = y²/1000 [mm] over −30 … 30 mm (it covers the running surface
+        // the plausibility checks ask for), in a Simpack wheel file.
+        let mut text = String::from("header.begin\n type = 1\nheader.end\npoint.begin\n");
+        for k in -30..=30 {
+            text += &format!("{k} {}\n", f64::from(k * k) / 1000.0);
+        }
+        text += "point.end\n";
         let path = std::env::temp_dir().join(format!("from_bytes_{}.prw", std::process::id()));
-        std::fs::write(&path, text).unwrap();
+        std::fs::write(&path, &text).unwrap();
         let from_file = Profile::from_file(&path, None, 1e-4).unwrap();
         let _ = std::fs::remove_file(&path);
         let from_bytes = Profile::from_bytes(text.as_bytes(), "x.prw", None, 1e-4).unwrap();

@@ -467,7 +467,8 @@ print(json.dumps(counts))
 
 @pytest.mark.parametrize("seed", [11, 12, 13])
 def test_no_crash_no_hang_and_no_nan_over_a_storm_of_bad_and_extreme_inputs(wrc_unzipdir: Path, seed: int) -> None:
-    """Every call returns OK, Discard or Error; whatever is readable is finite; nothing hangs."""
+    """Every call returns OK, Warning (an implausible state), Discard or Error; whatever is readable
+    is finite; nothing hangs."""
     try:
         proc = subprocess.run(
             [sys.executable, "-c", _STORM, str(wrc_unzipdir), str(seed), "400"],

@@ -176,6 +176,26 @@ impl Fmu {
             .collect()
     }
 
+    /// Messages logged with `fmi2Warning`.
+    pub fn warnings(&self) -> Vec<String> {
+        self.messages()
+            .into_iter()
+            .filter(|m| m.status == WARNING)
+            .map(|m| m.text)
+            .collect()
+    }
+
+    /// Asserts that some warning contains every one of `parts`.
+    #[track_caller]
+    pub fn assert_warning_logged(&self, parts: &[&str]) {
+        let warnings = self.warnings();
+        assert!(
+            warnings.iter().any(|m| parts.iter().all(|p| m.contains(p))),
+            "{}: no warning containing all of {parts:?}; warnings: {warnings:#?}",
+            self.name
+        );
+    }
+
     /// Asserts that some error message contains every one of `parts`.
     #[track_caller]
     pub fn assert_error_logged(&self, parts: &[&str]) {
