@@ -1,16 +1,17 @@
-"""What each host does when WheelRailContact returns fmi2Discard (a pose off the rail) or fails
-initialization with fmi2Error (a profile that cannot be loaded) — the behaviours
-docs/integration.md ("Hosts and their behaviour") describes, pinned so that a host upgrade that
-changes them is noticed.
+"""What each host does when WheelRailContact returns fmi2Discard (a pose off the rail) or
+fmi2Error (an input value it rejects; an initialization that fails because a profile cannot be
+loaded) — the behaviours docs/integration.md ("Hosts and their behaviour") describes, pinned so
+that a host upgrade that changes them is noticed.
 
-* FMPy: a failed initialization raises (``FMICallException``, status fmi2Error); on Discard
+* FMPy: every fmi2Error raises ``FMICallException`` (here: a failed initialization; rejected
+  values in ``test_wheel_rail_contact.py::test_nan_input_is_rejected_and_logged``); on Discard
   ``simulate_fmu`` stops at the last successful time and returns the results so far
   (``test_wheel_rail_contact.py::test_simulate_fmu_stops_at_a_pose_off_the_rail``).
-* libcosim: Discard fails the step, the execution goes to its error state and time stays at the
-  last successful step; a failed initialization aborts the whole process.
-* Ecos: neither stops it. It logs the FMU's message at debug level only, keeps stepping (time
-  advances) and serves the last values read; after a failed initialization ``init`` still
-  reports success.
+* libcosim: Discard or a rejected input fails the step, the execution goes to its error state
+  and time stays at the last successful step; a failed initialization aborts the whole process.
+* Ecos: nothing stops it. It logs the FMU's message at debug level only, keeps stepping (time
+  advances) and serves the last values read; a rejected input keeps its old value; after a
+  failed initialization ``init`` still reports success.
 
 The libcosim and Ecos runs are subprocesses (``libcosim_driver.py``, ``ecos_driver.py``).
 """
@@ -18,6 +19,7 @@ The libcosim and Ecos runs are subprocesses (``libcosim_driver.py``, ``ecos_driv
 from __future__ import annotations
 
 import json
+import math
 import signal
 import subprocess
 import sys
@@ -33,6 +35,7 @@ from conftest import WRC_FMU_FILE_NAME, packed_fmu, run_ecos
 HERE = Path(__file__).resolve().parent
 OFF_RAIL = 0.045  # m: lateral shift with the right wheel on its flange tip (derailing)
 MISSING = "not_bundled.prw"
+Q_DEFAULT = 78_500.0  # N; the wheel loads' start value
 READ = {"Real": ["y", "right.Fy", "right.Fz", "left.Fz"], "Integer": ["right.nPatches"]}
 
 
@@ -77,6 +80,18 @@ def test_libcosim_stops_in_its_error_state_on_discard(tmp_path: Path) -> None:
     assert result["failed"] == {"phase": 1, "time_ns": 2_000_000, "state": "ERROR"}
 
 
+def test_libcosim_stops_in_its_error_state_on_a_rejected_input(tmp_path: Path) -> None:
+    config = {
+        "fmu": str(packed_fmu(WRC_FMU_FILE_NAME)),
+        "step_ns": 1_000_000,
+        "instances": {"wrc": {}},
+        "phases": [{"steps": 1, "set": {}}, {"steps": 2, "set": {"wrc": {"Qleft": math.nan}}}],
+    }
+    proc, result = run_libcosim(config, tmp_path)
+    assert proc.returncode == 3, f"exit {proc.returncode}\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"
+    assert result["failed"] == {"phase": 1, "time_ns": 1_000_000, "state": "ERROR"}
+
+
 def test_libcosim_aborts_the_process_when_initialization_fails(tmp_path: Path) -> None:
     config = {
         "fmu": str(packed_fmu(WRC_FMU_FILE_NAME)),
@@ -119,6 +134,25 @@ def test_ecos_ignores_discard_and_keeps_stepping(tmp_path: Path) -> None:
     # later fmi2DoStep refused with fmi2Error.
     assert "fmi2Discard step at t = 0.001 discarded" in log, log
     assert log.count("fmi2Error fmi2DoStep must not be called in state StepFailed") == 2, log
+
+
+def test_ecos_ignores_a_rejected_input(tmp_path: Path) -> None:
+    result, log = run_ecos(
+        {
+            "fmu": str(packed_fmu(WRC_FMU_FILE_NAME)),
+            "instance": "wrc",
+            "step_size": 0.001,
+            "steps": [{}, {"Qleft": math.nan}, {}],
+            "read": {"Real": ["Qleft", "left.Fz"]},
+            "log_level": "debug",
+        },
+        tmp_path,
+    )
+    assert result["times"] == pytest.approx([0.001, 0.002, 0.003], abs=1e-12)
+    # The FMU kept the old load, and Ecos carried on with it.
+    assert [r["Qleft"] for r in result["rows"]] == [Q_DEFAULT] * 4
+    assert all(r["left.Fz"] == pytest.approx(-Q_DEFAULT, rel=1e-9) for r in result["rows"])
+    assert "fmi2Error Qleft = NaN is outside the allowed range" in log, log
 
 
 def test_ecos_reports_success_when_initialization_fails(tmp_path: Path) -> None:
