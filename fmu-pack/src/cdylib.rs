@@ -150,8 +150,8 @@ impl Build {
             Linker::Zig { glibc, .. } => format!("cargo zigbuild, glibc {glibc} or later"),
         };
         format!(
-            "{} for {} (binaries/{}; {how})",
-            "railcontact cdylib", self.target, self.platform.folder
+            "railcontact cdylib for {} (binaries/{}; {how})",
+            self.target, self.platform.folder
         )
     }
 
@@ -205,10 +205,14 @@ impl Build {
         let status = cmd
             .status()
             .map_err(|e| format!("cannot run {:?}: {e}", cmd.get_program()))?;
-        if status.success() {
-            Ok(())
-        } else {
-            Err(format!("the build of the cdylib failed ({status})"))
+        match (&self.linker, status.success()) {
+            (_, true) => Ok(()),
+            (Linker::Cargo, false) => Err(format!("the build of the cdylib failed ({status})")),
+            (Linker::Zig { cargo_zigbuild, .. }, false) => Err(format!(
+                "the build of the cdylib with {} failed ({status}); --glibc native builds with \
+                 plain cargo against this machine's glibc",
+                cargo_zigbuild.display()
+            )),
         }
     }
 }

@@ -1,7 +1,8 @@
-//! A small FMI 2.0 CS host: unzips a packed FMU, loads its shared library with fmi-sys's
-//! loader, checks that all 34 `fmi2*` functions resolve, reads value references and the GUID from
-//! the packed `modelDescription.xml` (not from the Rust table, as a real host would) and runs the
-//! model's default experiment, printing a table.
+//! A small FMI 2.0 CS host: unzips a packed FMU, loads its shared library (from the platform
+//! folder the packer wrote) with fmi-sys's loader, checks that all 34 `fmi2*` functions resolve,
+//! reads value references and the GUID from the packed `modelDescription.xml` (not from the Rust
+//! table, as a real host would) and runs the model's default experiment with the unpacked
+//! `resources/` as `resourceLocation`, printing a table.
 
 use crate::platform::Platform;
 use fmi_sys::fmi2::*;

@@ -9,6 +9,7 @@ tests are the acceptance gate of the packed FMUs.
 ``bundled_fmu_dir`` packs a second set with the benchmark profiles in ``resources/`` by running
 the packer's command (``cargo run --release -p fmu-pack -- --resource … --out DIR``); the
 benchmark files come from ``$RAILCONTACT_SHARED`` or ``<repo>/../shared`` (``shared_file``).
+``run_ecos`` runs ``ecos_driver.py`` (the Ecos host, in a subprocess).
 
 The fixtures ``fmu_path``, ``model_description``, ``unzipdir`` and ``shared_library`` are those
 of HertzContact (``test_hertz_contact.py``); ``wrc_fmu_path``, ``wrc_model_description`` and
