@@ -4,7 +4,8 @@
 //! * `$OUT_DIR/<Model>_vars.rs`: the Rust table of value references, start values and ranges,
 //!
 //! with the same GUID in both: a hash of the XML body and the crate version (so a change of the
-//! variables or of the release changes the GUID; see `../shared/docs/fmi-notes.md` §5).
+//! variables or of the release changes the GUID, and hosts that cache unpacked FMUs by GUID see a
+//! new one).
 //!
 //! Value references are the 0-based positions in the JSON list; each type (Real, Integer, Boolean,
 //! String) also gets a dense `slot` used as the index into the instance's value arrays.
