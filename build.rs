@@ -4,7 +4,8 @@
 //! * `$OUT_DIR/<Model>_vars.rs`: the Rust table of value references, start values and ranges,
 //!
 //! with the same GUID in both: a hash of the XML body and the crate version (so a change of the
-//! variables or of the release changes the GUID; see `../shared/docs/fmi-notes.md` §5).
+//! variables or of the release changes the GUID, and hosts that cache unpacked FMUs by GUID see a
+//! new one).
 //!
 //! Value references are the 0-based positions in the JSON list; each type (Real, Integer, Boolean,
 //! String) also gets a dense `slot` used as the index into the instance's value arrays.
@@ -133,8 +134,15 @@ fn main() {
     println!("cargo:rerun-if-changed=modelDescription");
     println!("cargo:rerun-if-changed=build.rs");
     // Keep the library mapped after dlclose: Rust thread-local destructors registered by the
-    // cdylib must not outlive its code (fmi-notes.md §9).
-    println!("cargo:rustc-cdylib-link-arg=-Wl,-z,nodelete");
+    // cdylib must not outlive its code. `-z nodelete` is an ELF linker flag (GNU ld, lld, zig);
+    // Apple's and Microsoft's linkers do not know it, so only ELF targets get it.
+    let target_os = std::env::var("CARGO_CFG_TARGET_OS").unwrap_or_default();
+    if matches!(
+        target_os.as_str(),
+        "linux" | "android" | "freebsd" | "netbsd" | "openbsd" | "dragonfly" | "illumos"
+    ) {
+        println!("cargo:rustc-cdylib-link-arg=-Wl,-z,nodelete");
+    }
 
     let out_dir = std::env::var("OUT_DIR").expect("OUT_DIR");
     let version = std::env::var("CARGO_PKG_VERSION").expect("CARGO_PKG_VERSION");

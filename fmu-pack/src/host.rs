@@ -1,8 +1,10 @@
-//! A small FMI 2.0 CS host: unzips a packed FMU, loads its shared library with fmi-sys's
-//! loader, checks that all 34 `fmi2*` functions resolve, reads value references and the GUID from
-//! the packed `modelDescription.xml` (not from the Rust table, as a real host would) and runs the
-//! model's default experiment, printing a table.
+//! A small FMI 2.0 CS host: unzips a packed FMU, loads its shared library (from the platform
+//! folder the packer wrote) with fmi-sys's loader, checks that all 34 `fmi2*` functions resolve,
+//! reads value references and the GUID from the packed `modelDescription.xml` (not from the Rust
+//! table, as a real host would) and runs the model's default experiment with the unpacked
+//! `resources/` as `resourceLocation`, printing a table.
 
+use crate::platform::Platform;
 use fmi_sys::fmi2::*;
 use railcontact::fmi::model::ModelInfo;
 use std::collections::HashMap;
@@ -62,7 +64,7 @@ impl log::Log for StderrLog {
 }
 static LOGGER: StderrLog = StderrLog;
 
-fn unzip(fmu: &Path, dir: &Path) -> Result<(), String> {
+pub fn unzip(fmu: &Path, dir: &Path) -> Result<(), String> {
     let file = std::fs::File::open(fmu).map_err(|e| format!("{}: {e}", fmu.display()))?;
     let mut archive = zip::ZipArchive::new(file).map_err(|e| format!("{}: {e}", fmu.display()))?;
     for i in 0..archive.len() {
@@ -195,7 +197,34 @@ fn check_exports(b: &Fmi2Binding) -> Result<(), String> {
     }
 }
 
-pub fn run_default_experiment(info: &ModelInfo, fmu: &Path, run_root: &Path) -> Result<(), String> {
+/// A `file:` URI of an absolute path as hosts give `resourceLocation`: `file:///abs/path` with
+/// forward slashes (`file:///C:/dir` on Windows) and bytes other than unreserved characters,
+/// `/` and `:` percent-encoded.
+pub fn file_uri(path: &Path) -> String {
+    let mut text = path.to_string_lossy().into_owned();
+    if cfg!(windows) {
+        text = text.replace('\\', "/");
+    }
+    let mut uri = String::from("file://");
+    if !text.starts_with('/') {
+        uri.push('/');
+    }
+    for b in text.bytes() {
+        if b.is_ascii_alphanumeric() || b"-._~/:".contains(&b) {
+            uri.push(b as char);
+        } else {
+            uri.push_str(&format!("%{b:02X}"));
+        }
+    }
+    uri
+}
+
+pub fn run_default_experiment(
+    info: &ModelInfo,
+    fmu: &Path,
+    platform: &Platform,
+    run_root: &Path,
+) -> Result<(), String> {
     let _ = log::set_logger(&LOGGER).map(|()| log::set_max_level(log::LevelFilter::Warn));
     let id = info.model_identifier;
     let dir = run_root.join(id);
@@ -212,7 +241,7 @@ pub fn run_default_experiment(info: &ModelInfo, fmu: &Path, run_root: &Path) -> 
             ));
         }
     }
-    let library = dir.join("binaries/linux64").join(format!("{id}.so"));
+    let library = dir.join(platform.fmu_library(id));
     // SAFETY: loading our own freshly built library.
     let b =
         unsafe { Fmi2Binding::new(&library) }.map_err(|e| format!("{}: {e}", library.display()))?;
@@ -237,8 +266,8 @@ pub fn run_default_experiment(info: &ModelInfo, fmu: &Path, run_root: &Path) -> 
     std::fs::create_dir_all(&resources).map_err(|e| e.to_string())?;
     let c_name = CString::new(id).expect("identifier");
     let c_guid = CString::new(guid).map_err(|e| e.to_string())?;
-    let c_uri =
-        CString::new(format!("file://{}", resources.display())).map_err(|e| e.to_string())?;
+    let resources = std::path::absolute(&resources).map_err(|e| e.to_string())?;
+    let c_uri = CString::new(file_uri(&resources)).map_err(|e| e.to_string())?;
     let callbacks = fmi2CallbackFunctions {
         logger: Some(fmi_sys::fmi2::logger::callback_logger_handler),
         allocateMemory: None,
@@ -312,5 +341,140 @@ pub fn run_default_experiment(info: &ModelInfo, fmu: &Path, run_root: &Path) -> 
         })();
         b.fmi2FreeInstance(c);
         result.map_err(|e| format!("{id}: {e}"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pack::{write_fmu, Resources};
+    use railcontact::fmi::export::*;
+    use railcontact::models::wheel_rail_contact::INFO;
+    use std::sync::Mutex;
+
+    /// The FMU's log messages, by instance name.
+    struct Capture(Mutex<Vec<(String, String)>>);
+    impl log::Log for Capture {
+        fn enabled(&self, _: &log::Metadata<'_>) -> bool {
+            true
+        }
+        fn log(&self, r: &log::Record<'_>) {
+            let mut v = self.0.lock().unwrap();
+            v.push((r.target().to_string(), r.args().to_string()));
+        }
+        fn flush(&self) {}
+    }
+    static CAPTURE: Capture = Capture(Mutex::new(Vec::new()));
+
+    #[test]
+    fn file_uris_of_paths() {
+        assert_eq!(
+            file_uri(Path::new("/tmp/a b/résources")),
+            "file:///tmp/a%20b/r%C3%A9sources"
+        );
+        assert_eq!(
+            file_uri(Path::new(r"C:\x\resources")),
+            if cfg!(windows) {
+                "file:///C:/x/resources"
+            } else {
+                "file:///C:%5Cx%5Cresources"
+            }
+        );
+    }
+
+    /// `right.Fy` after one step of an instance of the unpacked FMU in `dir`, with wheelProfile
+    /// = `wheel`; Err(log) when initialization fails.
+    fn right_fy(dir: &Path, name: &str, wheel: &str) -> Result<f64, Vec<String>> {
+        let _ = log::set_logger(&CAPTURE).map(|()| log::set_max_level(log::LevelFilter::Trace));
+        let vr = |n: &str| INFO.variable(n).unwrap().vr;
+        let callbacks = fmi2CallbackFunctions {
+            logger: Some(fmi_sys::fmi2::logger::callback_logger_handler),
+            allocateMemory: None,
+            freeMemory: None,
+            stepFinished: None,
+            componentEnvironment: std::ptr::null_mut(),
+        };
+        let uri = CString::new(file_uri(&dir.join("resources"))).unwrap();
+        let (c_name, guid) = (
+            CString::new(name).unwrap(),
+            CString::new(INFO.guid).unwrap(),
+        );
+        let wheel = CString::new(wheel).unwrap();
+        // SAFETY: valid strings, callbacks and value references for the calls' duration.
+        unsafe {
+            let c = fmi2Instantiate(
+                c_name.as_ptr(),
+                fmi2Type_fmi2CoSimulation,
+                guid.as_ptr(),
+                uri.as_ptr(),
+                &callbacks,
+                0,
+                0,
+            );
+            assert!(!c.is_null());
+            assert_eq!(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), 0);
+            assert_eq!(fmi2SetString(c, &vr("wheelProfile"), 1, &wheel.as_ptr()), 0);
+            let y = 0.003;
+            assert_eq!(fmi2SetReal(c, &vr("y"), 1, &y), 0);
+            let ok = fmi2EnterInitializationMode(c) == 0 && fmi2ExitInitializationMode(c) == 0;
+            let mut fy = f64::NAN;
+            let ok = ok
+                && fmi2DoStep(c, 0.0, 1e-3, 1) == 0
+                && fmi2GetReal(c, &vr("right.Fy"), 1, &mut fy) == 0;
+            fmi2FreeInstance(c);
+            if ok {
+                Ok(fy)
+            } else {
+                let log = CAPTURE.0.lock().unwrap();
+                Err(log
+                    .iter()
+                    .filter(|(t, _)| t == name)
+                    .map(|(_, m)| m.clone())
+                    .collect())
+            }
+        }
+    }
+
+    #[test]
+    fn a_bundled_profile_loads_by_its_bare_name() {
+        let benchmark = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../shared/profiles/MBench_S1002_v3.prw")
+            .canonicalize()
+            .expect("the shared benchmark profiles are required");
+        let dir = std::env::temp_dir().join(format!("fmu-pack-bundled-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        // The library is not loaded here (the test calls the model's exports linked into this
+        // binary), so any bytes stand in for it.
+        let library = dir.join("library");
+        std::fs::write(&library, b"-").unwrap();
+        let resources = Resources::new(std::slice::from_ref(&benchmark)).unwrap();
+        let platform = Platform::of_target("x86_64-unknown-linux-gnu").unwrap();
+        let fmu = dir.join("WheelRailContact.fmu");
+        write_fmu(&INFO, &library, &platform, &resources, &fmu).unwrap();
+        let unpacked = dir.join("unpacked");
+        unzip(&fmu, &unpacked).unwrap();
+        assert!(unpacked.join("resources/MBench_S1002_v3.prw").is_file());
+
+        let bundled = right_fy(&unpacked, "bundled", "MBench_S1002_v3.prw").unwrap();
+        let by_path = right_fy(&unpacked, "byPath", benchmark.to_str().unwrap()).unwrap();
+        let builtin = right_fy(&unpacked, "builtin", "S1002").unwrap();
+        assert_eq!(bundled.to_bits(), by_path.to_bits());
+        assert_ne!(bundled, builtin);
+
+        let log = right_fy(&unpacked, "missing", "MBench_S1002_v4.prw").unwrap_err();
+        let resources_dir = std::path::absolute(unpacked.join("resources")).unwrap();
+        let expected = format!(
+            "looked in the FMU's resources folder ({})",
+            resources_dir.join("MBench_S1002_v4.prw").display()
+        );
+        assert!(
+            log.iter()
+                .any(|m| m.contains("wheelProfile = \"MBench_S1002_v4.prw\"")
+                    && m.contains(&expected)
+                    && m.contains("the working directory")),
+            "{expected:?} not in {log:#?}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -1,5 +1,6 @@
-//! `resourceLocation` URIs (fmi-notes.md §7): `file:///abs`, `file:/abs` and
-//! `file://localhost/abs`, percent-encoded. Anything else means "no resources".
+//! `resourceLocation` URIs: `file:///abs`, `file:/abs` and `file://localhost/abs`,
+//! percent-encoded (hosts differ in the form; FMPy sends `file:///…`). On Windows the path part
+//! of `file:///C:/dir` is `C:/dir`. Anything else means "no resources".
 
 use std::path::PathBuf;
 
@@ -20,7 +21,19 @@ pub fn resource_dir_from_uri(uri: &str) -> Option<PathBuf> {
     if !path.starts_with('/') {
         return None;
     }
-    percent_decode(path).map(PathBuf::from)
+    let path = percent_decode(path)?;
+    if cfg!(windows) {
+        if let Some(native) = without_drive_slash(&path) {
+            return Some(PathBuf::from(native));
+        }
+    }
+    Some(PathBuf::from(path))
+}
+
+/// `C:/dir` for the URI path `/C:/dir` (a Windows drive letter), else `None`.
+fn without_drive_slash(path: &str) -> Option<&str> {
+    let b = path.as_bytes();
+    (b.len() >= 3 && b[0] == b'/' && b[1].is_ascii_alphabetic() && b[2] == b':').then(|| &path[1..])
 }
 
 fn percent_decode(s: &str) -> Option<String> {
@@ -53,6 +66,24 @@ mod tests {
             resource_dir_from_uri("file://localhost/tmp/a%20b/resources"),
             want
         );
+    }
+
+    #[test]
+    fn windows_drive_letters_lose_the_leading_slash() {
+        assert_eq!(
+            without_drive_slash("/C:/a b/resources"),
+            Some("C:/a b/resources")
+        );
+        assert_eq!(without_drive_slash("/c:"), Some("c:"));
+        assert_eq!(without_drive_slash("/tmp/resources"), None);
+        assert_eq!(without_drive_slash("/1:/x"), None);
+        let decoded = resource_dir_from_uri("file:///C:/a%20b/resources");
+        let want = if cfg!(windows) {
+            "C:/a b/resources"
+        } else {
+            "/C:/a b/resources"
+        };
+        assert_eq!(decoded, Some(PathBuf::from(want)));
     }
 
     #[test]

@@ -201,8 +201,10 @@ fn side_vars(right: bool) -> (IntegerVar, [RealVar; 4]) {
     }
 }
 
-/// A profile parameter: built-in name, or a path (relative paths: FMU resources first). The
-/// error names the parameter and its value, then the file, line and reason.
+/// A profile parameter: built-in name, or a path. A relative path (a bare file name bundled with
+/// `fmu-pack --resource`, typically) is looked up in the FMU's `resources/` first, then in the
+/// working directory; when neither holds it, the message lists the places tried. The error names
+/// the parameter and its value, then the file, line and reason.
 fn load_profile(
     spec: &str,
     kind: ProfileKind,
@@ -213,15 +215,41 @@ fn load_profile(
         ProfileKind::Wheel => "wheelProfile",
         ProfileKind::Rail => "railProfile",
     };
-    let in_resources = resources
-        .map(|dir| dir.join(spec))
-        .filter(|p| Path::new(spec).is_relative() && p.is_file());
-    let path = in_resources
-        .as_deref()
-        .and_then(Path::to_str)
-        .unwrap_or(spec);
-    Profile::load(path, kind, smoothing)
-        .map_err(|e| ModelError::Error(format!("{variable} = {spec:?}: {e}")))
+    let fail = |e: &dyn std::fmt::Display| ModelError::Error(format!("{variable} = {spec:?}: {e}"));
+    let name = spec.trim();
+    let builtin = crate::profile::BUILTIN_NAMES
+        .iter()
+        .any(|b| b.eq_ignore_ascii_case(name));
+    if builtin || name.is_empty() || Path::new(name).is_absolute() {
+        return Profile::load(spec, kind, smoothing).map_err(|e| fail(&e));
+    }
+    let places: Vec<(&str, PathBuf)> = resources
+        .map(|dir| ("the FMU's resources folder", dir.join(name)))
+        .into_iter()
+        .chain(
+            std::env::current_dir()
+                .ok()
+                .map(|dir| ("the working directory", dir.join(name))),
+        )
+        .collect();
+    if let Some((_, path)) = places.iter().find(|(_, p)| p.is_file()) {
+        return Profile::from_file(path, Some(kind), smoothing).map_err(|e| fail(&e));
+    }
+    let e = match Profile::load(spec, kind, smoothing) {
+        Ok(profile) => return Ok(profile), // the working directory was not known
+        Err(e) => e,
+    };
+    let looked: Vec<String> = places
+        .iter()
+        .map(|(place, path)| format!("{place} ({})", path.display()))
+        .collect();
+    let mut text = format!("{e}; looked in {}", looked.join(" and "));
+    if resources.is_none() {
+        text.push_str(
+            "; there is no resources folder: the host gave no file: URI as resourceLocation",
+        );
+    }
+    Err(fail(&text))
 }
 
 /// The wheelset settings the parameters describe.
@@ -539,6 +567,58 @@ fn parse_warm_start(bytes: &[u8]) -> Result<[Option<WarmStart>; 2], String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn relative_profile_names_are_looked_up_in_the_resources_first() {
+        let benchmark =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles/MBench_S1002_v3.prw");
+        let resources = std::env::temp_dir().join(format!("wrc-resources-{}", std::process::id()));
+        std::fs::create_dir_all(&resources).unwrap();
+        std::fs::copy(&benchmark, resources.join("MBench_S1002_v3.prw")).unwrap_or_else(|e| {
+            panic!(
+                "{}: {e} (the shared profiles are required)",
+                benchmark.display()
+            )
+        });
+        let wheel = ProfileKind::Wheel;
+        let bundled = load_profile("MBench_S1002_v3.prw", wheel, 1e-3, Some(&resources)).unwrap();
+        let direct = Profile::from_file(&benchmark, Some(wheel), 1e-3).unwrap();
+        assert_eq!(bundled.points(), direct.points());
+        // Built-in names stay built-in.
+        assert_eq!(
+            load_profile("s1002", wheel, 0.0, Some(&resources))
+                .unwrap()
+                .name(),
+            "S1002"
+        );
+
+        let Err(ModelError::Error(e)) = load_profile("other.prw", wheel, 0.0, Some(&resources))
+        else {
+            panic!("a missing file must fail")
+        };
+        let cwd = std::env::current_dir().unwrap();
+        for text in [
+            "wheelProfile = \"other.prw\": ".to_string(),
+            "unknown built-in profile \"other.prw\"".to_string(),
+            format!(
+                "looked in the FMU's resources folder ({})",
+                resources.join("other.prw").display()
+            ),
+            format!(
+                " and the working directory ({})",
+                cwd.join("other.prw").display()
+            ),
+        ] {
+            assert!(e.contains(&text), "{text:?} not in {e:?}");
+        }
+        let Err(ModelError::Error(e)) = load_profile("other.prr", ProfileKind::Rail, 0.0, None)
+        else {
+            panic!("a missing file must fail")
+        };
+        assert!(e.starts_with("railProfile = \"other.prr\": "), "{e}");
+        assert!(e.contains("there is no resources folder"), "{e}");
+        let _ = std::fs::remove_dir_all(&resources);
+    }
 
     fn bytes_of(warm: [Option<WarmStart>; 2]) -> Vec<u8> {
         let mut out = Vec::new();

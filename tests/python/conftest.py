@@ -1,8 +1,15 @@
 """Session fixtures and shared helpers for the host tests of the packed FMUs.
 
 The FMUs are taken from ``$RAILCONTACT_FMU_DIR/<Model>.fmu`` when that variable is set, else
-from ``<repo>/target/fmu/<Model>.fmu`` (written by ``cargo run --release -p fmu-pack``).
-A missing FMU is a failure, never a skip: these tests are the acceptance gate of the packed FMUs.
+from ``$CARGO_TARGET_DIR/fmu/<Model>.fmu`` when that one is (relative to the working directory,
+as Cargo reads it), else from ``<repo>/target/fmu/<Model>.fmu`` — where
+``cargo run --release -p fmu-pack`` writes them. A missing FMU is a failure, never a skip: these
+tests are the acceptance gate of the packed FMUs.
+
+``bundled_fmu_dir`` packs a second set with the benchmark profiles in ``resources/`` by running
+the packer's command (``cargo run --release -p fmu-pack -- --resource … --out DIR``); the
+benchmark files come from ``$RAILCONTACT_SHARED`` or ``<repo>/../shared`` (``shared_file``).
+``run_ecos`` runs ``ecos_driver.py`` (the Ecos host, in a subprocess).
 
 The fixtures ``fmu_path``, ``model_description``, ``unzipdir`` and ``shared_library`` are those
 of HertzContact (``test_hertz_contact.py``); ``wrc_fmu_path``, ``wrc_model_description`` and
@@ -15,9 +22,12 @@ messages) and the ``Slave`` wrapper.
 from __future__ import annotations
 
 import itertools
+import json
 import math
 import os
 import shutil
+import subprocess
+import sys
 import threading
 from ctypes import byref
 from dataclasses import dataclass
@@ -46,6 +56,7 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 FMU_FILE_NAME = "HertzContact.fmu"
 WRC_FMU_FILE_NAME = "WheelRailContact.fmu"
 FMU_DIR_ENV = "RAILCONTACT_FMU_DIR"
+SHARED_ENV = "RAILCONTACT_SHARED"
 
 STEP = 1e-3  # s; the default experiments' step size (both models)
 
@@ -74,13 +85,20 @@ def require_tool(name: str) -> str:
     return path
 
 
+def cargo_target_dir() -> Path:
+    """Cargo's target directory: ``$CARGO_TARGET_DIR`` or ``<repo>/target``."""
+    env = os.environ.get("CARGO_TARGET_DIR")
+    return Path(env).resolve() if env else REPO_ROOT / "target"
+
+
 def packed_fmu(file_name: str) -> Path:
     """Path of a packed FMU; fails the test (never skips) when it is missing."""
     env = os.environ.get(FMU_DIR_ENV)
-    fmu_dir = Path(env) if env else REPO_ROOT / "target" / "fmu"
+    default_dir = cargo_target_dir() / "fmu"
+    fmu_dir = Path(env) if env else default_dir
     path = (fmu_dir / file_name).resolve()
     if not path.is_file():
-        origin = f"${FMU_DIR_ENV}={env!r}" if env else f"the default {REPO_ROOT / 'target' / 'fmu'}"
+        origin = f"${FMU_DIR_ENV}={env!r}" if env else f"the default {default_dir}"
         pytest.fail(
             f"{file_name} not found at {path} (FMU directory from {origin}). Build and pack it "
             f"with `cargo run --release -p fmu-pack` in {REPO_ROOT}, or point {FMU_DIR_ENV} at the "
@@ -138,6 +156,65 @@ def wrc_model_description(wrc_fmu_path: Path) -> ModelDescription:
 def wrc_unzipdir(wrc_fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     target = tmp_path_factory.mktemp("WheelRailContact_unzipped")
     return Path(fmpy.extract(str(wrc_fmu_path), unzipdir=str(target)))
+
+
+# ---------------------------------------------------------------------------------------------
+# The benchmark files and FMUs with them in resources/
+
+
+def shared_file(relative: str) -> Path:
+    """A file of the shared benchmark data; fails (never skips) when missing."""
+    env = os.environ.get(SHARED_ENV)
+    root = Path(env) if env else REPO_ROOT.parent / "shared"
+    path = (root / relative).resolve()
+    if not path.is_file():
+        origin = f"${SHARED_ENV}={env!r}" if env else f"the default {REPO_ROOT.parent / 'shared'}"
+        pytest.fail(f"benchmark file {path} not found (shared data directory from {origin})", pytrace=False)
+    return path
+
+
+BUNDLED_PROFILES = ("profiles/MBench_S1002_v3.prw", "profiles/MBench_UIC60_v3.prr")
+
+
+@dataclass(frozen=True)
+class PackerRun:
+    out_dir: Path
+    stdout: str
+
+
+@pytest.fixture(scope="session")
+def bundled_fmu_dir(tmp_path_factory: pytest.TempPathFactory) -> PackerRun:
+    """Both FMUs packed with the benchmark wheel and rail profiles in resources/, by the packer's
+    documented command (the library is already built: cargo only checks it is up to date)."""
+    cargo = require_tool("cargo")
+    out_dir = tmp_path_factory.mktemp("bundled") / "fmu"
+    command = [cargo, "run", "--release", "-q", "-p", "fmu-pack", "--"]
+    for relative in BUNDLED_PROFILES:
+        command += ["--resource", str(shared_file(relative))]
+    command += ["--out", str(out_dir)]
+    proc = subprocess.run(command, cwd=REPO_ROOT, capture_output=True, text=True, timeout=1200)
+    if proc.returncode != 0:
+        pytest.fail(f"{' '.join(command)}: exit {proc.returncode}\n{proc.stdout}\n{proc.stderr}", pytrace=False)
+    return PackerRun(out_dir, proc.stdout)
+
+
+# ---------------------------------------------------------------------------------------------
+# Ecos (ecospy), in a subprocess
+
+
+def run_ecos(config: dict, tmp_path: Path) -> tuple[dict, str]:
+    """Runs ecos_driver.py on `config`; returns its result and its output (Ecos's log)."""
+    config_path, result_path = tmp_path / "ecos_config.json", tmp_path / "ecos_result.json"
+    config_path.write_text(json.dumps(config), encoding="utf-8")
+    proc = subprocess.run(
+        [sys.executable, str(Path(__file__).resolve().parent / "ecos_driver.py"), str(config_path), str(result_path)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    log = proc.stdout + proc.stderr
+    assert proc.returncode == 0, f"Ecos driver died (exit {proc.returncode}):\n{log[-4000:]}"
+    return json.loads(result_path.read_text(encoding="utf-8")), log
 
 
 # ---------------------------------------------------------------------------------------------

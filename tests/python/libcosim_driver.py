@@ -1,9 +1,9 @@
 """Runs HertzContact instances in one libcosim execution and writes what they output as JSON.
 
-Used by ``test_hertz_contact.py::test_libcosim_two_instances_match_fmpy`` in a *subprocess*:
-libcosim aborts the whole process when an FMU returns fmi2Error from fmi2GetReal
-(docs: /work/shared/docs/fmi-notes.md §8, §13), and such an abort must fail one test, not kill
-the pytest session.
+Used by ``test_hertz_contact.py::test_libcosim_two_instances_match_fmpy`` and
+``test_host_behaviour.py`` in a *subprocess*: libcosim aborts the whole process when an FMU
+returns fmi2Error from fmi2GetReal (as during a failed initialization, see docs/integration.md),
+and such an abort must fail one test, not kill the pytest session.
 
 Usage: ``python libcosim_driver.py CONFIG.json RESULT.json``. CONFIG::
 
@@ -12,10 +12,14 @@ Usage: ``python libcosim_driver.py CONFIG.json RESULT.json``. CONFIG::
      "instances": {"left": {"E": 2.0e11, "eta": -6.25e-4}, "right": {...}},   # initial values
      "phases": [{"steps": 3, "set": {}}, {"steps": 2, "set": {"left": {"eta": 1e-4}}}]}
 
-Each phase first overrides inputs (libcosim applies them before the next fmi2DoStep), then steps.
+Initial values are Real, Integer or (JSON strings) String. Each phase first overrides inputs
+(libcosim applies them before the next fmi2DoStep), then steps.
 RESULT: ``{"phases": [{"time_ns": ..., "values": {instance: {variable: value}}}], "variables": ...}``
 with every Real and Integer variable of every instance, read through a last-value observer
 after each phase. libcosim itself calls fmi2Get* for every declared variable after each step.
+When a step fails (an FMU returned fmi2Discard or fmi2Error), the result gets ``"failed":
+{"phase": index, "time_ns": ..., "state": ...}`` with the execution's status after the failure,
+is written, and the driver exits with status 3.
 """
 
 from __future__ import annotations
@@ -61,6 +65,8 @@ def main(config_path: str, result_path: str) -> int:
                 ok = execution.real_initial_value(index[name], vr, float(value))
             elif vtype is CosimVariableType.INTEGER:
                 ok = execution.integer_initial_value(index[name], vr, int(value))
+            elif vtype is CosimVariableType.STRING:
+                ok = execution.string_initial_value(index[name], vr, str(value))
             else:
                 raise ValueError(f"{var}: unsupported type {vtype}")
             if not ok:
@@ -72,7 +78,7 @@ def main(config_path: str, result_path: str) -> int:
         raise RuntimeError("libcosim could not add the manipulator/observer")
 
     result = {"phases": [], "variables": {k: v[0] for k, v in variables[next(iter(variables))].items()}}
-    for phase in cfg["phases"]:
+    for phase_index, phase in enumerate(cfg["phases"]):
         for name, values in phase.get("set", {}).items():
             for var, value in values.items():
                 vr, vtype = variables[name][var]
@@ -81,7 +87,16 @@ def main(config_path: str, result_path: str) -> int:
                 if not manipulator.slave_real_values(index[name], [vr], [float(value)]):
                     raise RuntimeError(f"libcosim rejected override {name}.{var} = {value}")
         if not execution.step(int(phase["steps"])):
-            raise RuntimeError(f"libcosim step failed: {execution.status()}")
+            status = execution.status()
+            result["failed"] = {
+                "phase": phase_index,
+                "time_ns": int(status.current_time),
+                "state": CosimExecutionState(status.state).name,
+            }
+            with open(result_path, "w", encoding="utf-8") as f:
+                json.dump(result, f)
+            print(f"libcosim step failed: {status}", file=sys.stderr)
+            return 3
         status = execution.status()
         if CosimExecutionState(status.state) is CosimExecutionState.ERROR:
             raise RuntimeError(f"libcosim execution in error state: {status}")

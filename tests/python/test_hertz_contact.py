@@ -156,8 +156,8 @@ def test_shared_library_exports_exactly_34_fmi2_functions(shared_library: Path) 
 
 
 # glibc (libc, libm, the dynamic loader, and on glibc < 2.34 its split-out libpthread/libdl/librt),
-# libgcc_s (Rust's unwinder) and the kernel's vDSO. Anything else would have to be shipped or
-# installed next to every host (fmi-notes.md §4).
+# libgcc_s (Rust's unwinder; the portable build links zig's unwinder statically instead) and the
+# kernel's vDSO. Anything else would have to be shipped or installed next to every host.
 ALLOWED_DEPENDENCIES = re.compile(
     r"^(linux-vdso\.so\.1|libc\.so\.6|libm\.so\.6|libgcc_s\.so\.1|libpthread\.so\.0|libdl\.so\.2|librt\.so\.1"
     r"|(/\S*/)?ld-linux[-\w.]*\.so\.\d)$"

@@ -320,7 +320,7 @@ except Exception as e:
 @pytest.mark.parametrize("pose", OFF_RAIL_POSES)
 def test_simulate_fmu_stops_at_a_pose_off_the_rail(wrc_fmu_path: Path, pose: dict[str, float]) -> None:
     # A subprocess with a timeout: if Terminated were false, FMPy would retry the step forever
-    # (fmi-notes.md §3).
+    # (docs/integration.md, "Hosts and their behaviour").
     try:
         proc = subprocess.run(
             [sys.executable, "-c", _SIMULATE_UNTIL_DISCARD, str(wrc_fmu_path), json.dumps(pose)],
