@@ -300,6 +300,8 @@ struct Prepared {
     cos_yaw: f64,
     sin_roll: f64,
     cos_roll: f64,
+    /// Roll angle of this side [rad].
+    roll: f64,
     /// Whether the yawed wheel has one lowest point per lateral (see `WheelOnRail::wheel_at`).
     single_lowest_point: bool,
 }
@@ -392,6 +394,9 @@ pub struct ContactPlane {
     /// sin γ and cos γ (every strip's projection needs them).
     pub sin_gamma: f64,
     pub cos_gamma: f64,
+    /// Inclination of the plane in the rail's (track) frame [rad]: γ less the wheelset's roll
+    /// on this side, the angle of the patch's normal force in track axes.
+    pub gamma_rail: f64,
 }
 
 impl ContactPlane {
@@ -407,6 +412,7 @@ impl ContactPlane {
             gap_n: 0.0,
             sin_gamma,
             cos_gamma,
+            gamma_rail: gamma,
         }
     }
 
@@ -799,6 +805,7 @@ impl WheelOnRail {
             cos_yaw,
             sin_roll: pose.roll.sin(),
             cos_roll: pose.roll.cos(),
+            roll: pose.roll,
             single_lowest_point: tan_sq * self.wheel_convexity < UNIMODAL_MARGIN,
         }
     }
@@ -1381,6 +1388,7 @@ impl WheelOnRail {
         let p = &self.pose;
         let rail = self.rail_at(w0, p);
         let mut plane = ContactPlane::new(w0, rail.z, -rail.slope.atan(), lift);
+        plane.gamma_rail = plane.gamma - p.roll;
         // The tangent point itself always projects (dt/dw = 1/cos γ there).
         let (wheel, _) = project_on_plane(&plane, 0.0, |w| {
             let q = self.wheel_at(w, p);
@@ -1741,6 +1749,7 @@ impl WheelOnRail {
         let p = &self.pose;
         let rail = self.rail_at(w0, p);
         let mut plane = ContactPlane::new(w0, rail.z, gamma, lift);
+        plane.gamma_rail = gamma - p.roll;
         let (wheel, _) = project_on_plane(&plane, 0.0, |w| {
             let q = self.wheel_at(w, p);
             (q.z + lift, q.slope, ())

@@ -113,7 +113,8 @@ use std::f64::consts::{E, FRAC_PI_2, PI};
 
 use crate::elliptic::complete_elliptic_from_complementary;
 use crate::strips::{
-    HertzShapeTable, NormalParams, StripGeometry, StripModel, StripSolution, MAX_STRIPS,
+    first_contact_points, HertzShapeTable, NormalParams, StripGeometry, StripModel, StripSolution,
+    MAX_CONTACT_POINTS, MAX_STRIPS,
 };
 
 /// Kik–Piotrowski's virtual-penetration factor ε [-] (KP1: Piotrowski & Kik 2008 and the seed;
@@ -468,6 +469,10 @@ pub struct KikPiotrowski {
     half_length: [f64; MAX_STRIPS],
     /// D3's kernel remainder, tabulated at construction.
     kernel: RemainderTable,
+    /// The first-contact points of the geometry of the last `prepare` ([`first_contact_points`]):
+    /// lateral position y0 [m], gap f there [m] and weight [-].
+    points: [(f64, f64, f64); MAX_CONTACT_POINTS],
+    n_points: usize,
 }
 
 impl Default for KikPiotrowski {
@@ -495,6 +500,8 @@ impl KikPiotrowski {
             epsilon,
             half_length: [0.0; MAX_STRIPS],
             kernel: RemainderTable::new(),
+            points: [(0.0, 0.0, 0.0); MAX_CONTACT_POINTS],
+            n_points: 0,
         }
     }
 
@@ -543,7 +550,8 @@ impl KikPiotrowski {
 }
 
 impl StripModel for KikPiotrowski {
-    fn prepare(&mut self, _geom: &StripGeometry, _params: &NormalParams, _table: &HertzShapeTable) {
+    fn prepare(&mut self, geom: &StripGeometry, _params: &NormalParams, _table: &HertzShapeTable) {
+        self.n_points = first_contact_points(geom, geom.len(), &mut self.points);
     }
 
     fn solve(
@@ -570,20 +578,32 @@ impl StripModel for KikPiotrowski {
         } else {
             self.corrected_half_lengths(geom, n, penetration, stretch);
         }
-        // D3 (KP5, KP6), y measured from y0 = 0.
-        let mut d3 = 0.0;
-        for i in 0..n {
-            let c = self.half_length[i];
-            if c > 0.0 {
-                let s = geom.s[i];
-                d3 += self.kernel.strip_integral(c, s - 0.5 * ds, s + 0.5 * ds);
+        // D3 (KP5, KP6), y measured from each first-contact point y0; KP4 with the true
+        // penetration there, δ − f(y0), blended over the points by their weights.
+        let mut peak_per_half_length = 0.0;
+        let points = if self.n_points > 0 {
+            &self.points[..self.n_points]
+        } else {
+            &[(0.0, 0.0, 1.0)][..]
+        };
+        for &(y0, f0, weight) in points {
+            let mut d3 = 0.0;
+            for i in 0..n {
+                let c = self.half_length[i];
+                if c > 0.0 {
+                    let s = geom.s[i] - y0;
+                    d3 += self.kernel.strip_integral(c, s - 0.5 * ds, s + 0.5 * ds);
+                }
+            }
+            let penetration_at = delta - f0;
+            if d3 > 0.0 && d3.is_finite() && penetration_at > 0.0 {
+                // KP3 + KP5: p0_i = πE*δ x_l,i/D3; V1 then sums to N = πE*δ D1/D3.
+                peak_per_half_length += weight * PI * e_star * penetration_at / d3;
             }
         }
-        if !(d3 > 0.0 && d3.is_finite()) {
+        if !(peak_per_half_length > 0.0) {
             return 0.0;
         }
-        // KP3 + KP5: p0_i = πE*δ x_l,i/D3; V1 then sums to N = πE*δ D1/D3.
-        let peak_per_half_length = PI * e_star * delta / d3;
         for i in 0..n {
             let c = self.half_length[i];
             if c > 0.0 {

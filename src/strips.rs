@@ -252,6 +252,96 @@ impl PatchSummary {
     }
 }
 
+/// Most first-contact points (local minima of the gap across the strips) a patch is solved for.
+pub const MAX_CONTACT_POINTS: usize = 4;
+
+/// The first-contact points of a patch (Kik–Piotrowski's KP4 condition, Linder's centre at
+/// small approaches): the local minima of the gap f over the strips,
+/// each at the vertex of the parabola through its strip and the two neighbours (within half a
+/// strip of its centre; exact for a quadratic gap, so a Hertz gap's y0 is its minimum however
+/// the strips lie), weighted by e⁴, e the minimum's height below its lowest neighbouring ridge
+/// of f (as the patch groups share a first-contact point, `crate::patch_groups`). One minimum
+/// gets weight 1. Where a patch spans two lobes of comparable depth, KP4 is imposed at both,
+/// blended by these weights, so that the solution does not jump where their depths cross; the
+/// weights do not depend on δ, so N(δ) stays increasing.
+pub fn first_contact_points(
+    geom: &StripGeometry,
+    n: usize,
+    out: &mut [(f64, f64, f64); MAX_CONTACT_POINTS],
+) -> usize {
+    let f = &geom.f;
+    let usable = |j: usize| f[j].is_finite() && f[j] < crate::contact_search::UNREACHED_GAP;
+    let mut minima = [0usize; MAX_CONTACT_POINTS];
+    let mut ridges = [f64::INFINITY; MAX_CONTACT_POINTS];
+    let mut count = 0;
+    let mut ridge = f64::NEG_INFINITY;
+    for j in 0..n {
+        if !usable(j) {
+            continue;
+        }
+        ridge = ridge.max(f[j]);
+        let lower_left = j == 0 || !usable(j - 1) || f[j] <= f[j - 1];
+        let lower_right = j + 1 == n || !usable(j + 1) || f[j] < f[j + 1];
+        if !(lower_left && lower_right) {
+            continue;
+        }
+        if count == MAX_CONTACT_POINTS {
+            // Keep the deepest: replace the shallowest if this one is deeper.
+            let shallowest = (0..count).max_by(|&a, &b| f[minima[a]].total_cmp(&f[minima[b]]));
+            if let Some(k) = shallowest.filter(|&k| f[minima[k]] > f[j]) {
+                minima[k] = j;
+            }
+            continue;
+        }
+        if count > 0 {
+            ridges[count - 1] = ridge;
+        }
+        minima[count] = j;
+        count += 1;
+        ridge = f[j];
+    }
+    let mut total = 0.0;
+    for k in 0..count {
+        let j = minima[k];
+        let left = if k > 0 { ridges[k - 1] } else { f64::INFINITY };
+        let right = if k + 1 < count {
+            ridges[k]
+        } else {
+            f64::INFINITY
+        };
+        let height = (left.min(right) - f[j]).max(0.0);
+        let weight = if count == 1 {
+            1.0
+        } else if height.is_finite() {
+            height.powi(16)
+        } else {
+            0.0
+        };
+        // Vertex of the parabola through the neighbours, within half a strip.
+        let (mut y0, mut f0) = (geom.s[j], f[j]);
+        if j > 0 && j + 1 < n && usable(j - 1) && usable(j + 1) {
+            let curvature = f[j - 1] - 2.0 * f[j] + f[j + 1];
+            if curvature > 0.0 {
+                let t = (0.5 * (f[j - 1] - f[j + 1]) / curvature).clamp(-0.5, 0.5);
+                y0 += t * geom.ds;
+                f0 = f[j] + 0.25 * (f[j + 1] - f[j - 1]) * t + 0.5 * curvature * t * t;
+            }
+        }
+        out[k] = (y0, f0, weight);
+        total += weight;
+    }
+    if total > 0.0 && total.is_finite() {
+        for p in &mut out[..count] {
+            p.2 /= total;
+        }
+    } else {
+        for p in &mut out[..count] {
+            p.2 = 1.0 / count as f64;
+        }
+    }
+    count
+}
+
 /// Parameters shared by the strip normal models.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NormalParams {

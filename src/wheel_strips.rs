@@ -112,11 +112,13 @@ impl StripPatch {
         PatchSummary::of(&self.geom, &self.sol)
     }
 
-    /// Contact angle of the patch: the rail's angle at the force centroid of the strips (the
-    /// patch's reference point; planar patch, so the whole normal force acts along it) [rad].
-    pub fn reference_angle(&self) -> f64 {
-        let centroid = self.summary().s_centroid;
-        self.interpolate_by(centroid, |j| self.points.contact_angle(j))
+    /// Contact angle of the patch: the inclination of its contact plane in the track frame
+    /// (positive rising towards the flange) [rad]. The planar patch's normal force acts along
+    /// the plane's normal; the plane is fixed for the step, so the vertical force N cos γ
+    /// increases with the lowering as N does (the rail's angle at the force centroid, which
+    /// moves with the lowering, would not keep it monotone across a patch of two lobes).
+    pub fn contact_angle(&self) -> f64 {
+        self.plane.gamma_rail
     }
 
     /// Linear interpolation of a per-strip quantity at in-plane coordinate `s`.
@@ -253,7 +255,7 @@ impl StripSide {
             .map(|p| {
                 let n = p.solve(dz, params, table);
                 if n > 0.0 {
-                    p.weight * n * p.reference_angle().cos()
+                    p.weight * n * p.contact_angle().cos()
                 } else {
                     0.0
                 }
@@ -366,7 +368,11 @@ impl StripSide {
     ) -> f64 {
         let first = approach.max(1e-9);
         let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, |dz| {
-            Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q)
+            let f = self.vertical_force(dz, params, table);
+            if std::env::var_os("RC_DEBUG").is_some() {
+                eprintln!("   N({:.6e}) = {:.4} (q {:.4})", dz - touch, f, q);
+            }
+            Ok::<_, std::convert::Infallible>(f - q)
         });
         if !balanced.evaluated {
             self.vertical_force(balanced.lowering, params, table);

@@ -1095,7 +1095,7 @@ fn strip_patch_result(
         lateral: at(&patch.points.lateral),
         longitudinal: at(&patch.geom.x_c),
         y_rail: at(&patch.points.y_rail),
-        contact_angle: patch.interpolate_by(sc, |j| patch.points.contact_angle(j)),
+        contact_angle: patch.contact_angle(),
         rolling_radius: at(&patch.points.rolling_radius),
         curv_a: at(&patch.geom.curv_a),
         curv_b: at(&patch.geom.curv_b),
@@ -1431,7 +1431,17 @@ fn hertz_side(
     let level = merge_level(touch, q, ctx.e_star, ctx.settings.setup.wheel_radius);
     creep_passes(q, start_creep, |_, target| {
         let balanced = balance_hertzian(touch, first_approach, target, LOAD_ITERATIONS, |dz| {
-            Ok::<_, InputError>(evaluate_side(side, ctx, input, dz, level, out, false)? - target)
+            let f = evaluate_side(side, ctx, input, dz, level, out, false)?;
+            if std::env::var_os("RC_DEBUG").is_some() {
+                eprintln!(
+                    "   H({:.6e}) = {:.4} (q {:.4}) groups {}",
+                    dz - touch,
+                    f,
+                    target,
+                    out.n_groups
+                );
+            }
+            Ok::<_, InputError>(f - target)
         })?;
         first_approach = balanced.lowering - touch;
         if !tangential {
