@@ -368,11 +368,7 @@ impl StripSide {
     ) -> f64 {
         let first = approach.max(1e-9);
         let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, |dz| {
-            let f = self.vertical_force(dz, params, table);
-            if std::env::var_os("RC_DEBUG").is_some() {
-                eprintln!("   N({:.6e}) = {:.4} (q {:.4})", dz - touch, f, q);
-            }
-            Ok::<_, std::convert::Infallible>(f - q)
+            Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q)
         });
         if !balanced.evaluated {
             self.vertical_force(balanced.lowering, params, table);

@@ -1290,9 +1290,6 @@ fn creep_passes(
             break;
         };
         found = Some(new_creep);
-        if std::env::var_os("RC_DEBUG").is_some() {
-            eprintln!("pass {k}: creep {creep:.6} target {target:.6} new {new_creep:.6}");
-        }
         if k + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
             break;
         }
@@ -1431,17 +1428,7 @@ fn hertz_side(
     let level = merge_level(touch, q, ctx.e_star, ctx.settings.setup.wheel_radius);
     creep_passes(q, start_creep, |_, target| {
         let balanced = balance_hertzian(touch, first_approach, target, LOAD_ITERATIONS, |dz| {
-            let f = evaluate_side(side, ctx, input, dz, level, out, false)?;
-            if std::env::var_os("RC_DEBUG").is_some() {
-                eprintln!(
-                    "   H({:.6e}) = {:.4} (q {:.4}) groups {}",
-                    dz - touch,
-                    f,
-                    target,
-                    out.n_groups
-                );
-            }
-            Ok::<_, InputError>(f - target)
+            Ok::<_, InputError>(evaluate_side(side, ctx, input, dz, level, out, false)? - target)
         })?;
         first_approach = balanced.lowering - touch;
         if !tangential {
