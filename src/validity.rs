@@ -117,7 +117,7 @@ pub fn validity(result: &WheelsetResult) -> Option<Implausible> {
 
 /// The patches of a side that are in use.
 fn in_contact(side: &SideResult) -> impl Iterator<Item = &crate::wheelset::PatchResult> {
-    side.patches.iter().take(side.n_patches)
+    side.all_patches().iter()
 }
 
 impl fmt::Display for Implausible {

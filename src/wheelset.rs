@@ -222,6 +222,19 @@ pub struct SideResult {
     pub z: f64,
 }
 
+impl SideResult {
+    /// The patches in the output slots, in slot order (a slot may be empty: a patch keeps its
+    /// slot while it exists).
+    pub fn shown_patches(&self) -> impl Iterator<Item = &PatchResult> + '_ {
+        self.patches.iter().filter(|p| p.weight > 0.0)
+    }
+
+    /// Every patch of the wheel, also those beyond the output slots.
+    pub fn all_patches(&self) -> &[PatchResult] {
+        &self.groups[..self.n_groups]
+    }
+}
+
 /// Both wheels.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct WheelsetResult {
@@ -337,14 +350,10 @@ pub struct WarmStart {
     /// cold start).
     pub approach_step: f64,
     pub creep_step: f64,
-    /// Strip models: the approach at which their first layout carried the load, over
-    /// `approach` [-] (the first trial of the next step's iteration is `approach` times this;
-    /// 1 for the multi-Hertzian solution).
-    pub strip_ratio: f64,
-    /// Strip models: the approach at which their final patches carried the load less the creep
-    /// forces' vertical component, over `approach` [-] (the first trial of the next step's final
+    /// Strip models: the approach at which their patches carried the load less the creep
+    /// forces' vertical component, over `approach` [-] (the first trial of the next step's
     /// iteration is `approach` times this; 1 for the multi-Hertzian solution).
-    pub final_ratio: f64,
+    pub strip_ratio: f64,
 }
 
 impl WarmStart {
@@ -357,14 +366,9 @@ impl WarmStart {
         (approach, self.creep + self.creep_step)
     }
 
-    /// The warm start after a step that found `approach`, `creep` and the strip ratios
-    /// [`WarmStart::strip_ratio`] and [`WarmStart::final_ratio`], following `previous`.
-    fn after(
-        previous: Option<WarmStart>,
-        approach: f64,
-        creep: f64,
-        [strip_ratio, final_ratio]: [f64; 2],
-    ) -> Self {
+    /// The warm start after a step that found `approach`, `creep` and the strip ratio
+    /// [`WarmStart::strip_ratio`], following `previous`.
+    fn after(previous: Option<WarmStart>, approach: f64, creep: f64, strip_ratio: f64) -> Self {
         let (approach_step, creep_step) =
             previous.map_or((0.0, 0.0), |p| (approach - p.approach, creep - p.creep));
         Self {
@@ -373,7 +377,6 @@ impl WarmStart {
             approach_step,
             creep_step,
             strip_ratio,
-            final_ratio,
         }
     }
 }
@@ -507,6 +510,21 @@ impl Wheelset {
             })
             .collect();
         (!field.is_empty()).then_some(field)
+    }
+
+    /// The strip patch in output slot `slot` (0-based) of one wheel after the last solve, or
+    /// `None` (an empty slot, or a multi-Hertzian patch).
+    pub fn strip_patch_of_slot(
+        &self,
+        right: bool,
+        slot: usize,
+    ) -> Option<&crate::wheel_strips::StripPatch> {
+        let side = if right { &self.right } else { &self.left };
+        let group = side.slots.get(slot).copied().flatten()?.group;
+        side.strips
+            .as_ref()?
+            .patches()
+            .get(side.strip_of_group[group]?)
     }
 
     /// The output slots of both wheels after the last solve, `[left, right]` (part of the state
@@ -684,11 +702,12 @@ const VIRTUAL_FRACTION: f64 = crate::kik_piotrowski::KP_EPSILON;
 ///   strip's load is linear in its virtual penetration, as it is for a Hertz ellipse); on a
 ///   symmetric gap the deepest point, on a near-conformal one (Manchester, right wheel at
 ///   0.5 mm) within 1 mm of CONTACT's reference point where the deepest point is 2.8 mm off;
-/// * its d-weighted variance σ² of the lateral gives the lateral curvature: a parabolic gap
-///   B_v w² has σ² = ε δ_v/(5 B_v), so B_v = ε δ_v/(5σ²) — the point curvature on a Hertzian
-///   gap, a mean over the patch otherwise (as CONTACT's KPEC takes B from the virtual region's
-///   width). In the contact plane B = B_v cos³γ (floored at `b_min`), A = cos γ/(2r) at the
-///   reference point, and the normal approach δ_v cos γ.
+/// * the variance σ² of the lateral weighted by the whole interpenetration, max(0, dz − gap),
+///   gives the lateral curvature: a parabolic gap B_v w² has σ² = δ_v/(5 B_v), so
+///   B_v = δ_v/(5σ²) — the point curvature on a Hertzian gap, a mean over the patch otherwise
+///   (as CONTACT's KPEC takes B from the virtual region's width). In the contact plane
+///   B = B_v cos³γ (floored at `b_min`), A = cos γ/(2r) at the reference point, and the normal
+///   approach δ_v cos γ.
 #[allow(clippy::too_many_arguments)]
 fn evaluate_side(
     side: &mut Side,
@@ -767,7 +786,14 @@ fn group_ellipse(
     };
     let reference = geometry.point_at_lateral(moments.mean);
     let cos_g = geometry.plane_angle_at(moments.mean).cos();
-    let curv_b = (virtual_depth / (5.0 * moments.variance) * cos_g.powi(3)).max(b_floor);
+    // The lateral curvature from the spread of the whole interpenetration (the rigid region,
+    // ε = 1): the scale of the contact's width (on the benchmark's two-lobed central case a
+    // smaller fraction sees the flat bottom between the lobes and widens the ellipse: area +11 %
+    // at 0.55 against CONTACT, ±0 % at 1).
+    let Some(spread) = geometry.depth_moments(gauge, field, dz) else {
+        return Ok(None);
+    };
+    let curv_b = (depth / (5.0 * spread.variance) * cos_g.powi(3)).max(b_floor);
     let approach = depth * cos_g;
     if !(curv_b.is_finite() && approach > 0.0) {
         return Ok(None);
@@ -1332,21 +1358,21 @@ fn solve_side(
     // Hertz solution and the creep iteration.
     let mut creep = hertz_side(side, ctx, input, load, z, touch, warm, out, !strip_model)?;
     let approach = out.z - touch;
-    let mut strip_ratios = [1.0; 2];
+    let mut strip_ratio = 1.0;
     if strip_model && load != Some(0.0) {
         let start = warm.map_or(0.0, |w| w.predicted().1);
-        let ratio_hint = warm.map_or(1.0, |w| w.final_ratio);
+        let ratio_hint = warm.map_or(1.0, |w| w.strip_ratio);
         creep = solve_strips(side, ctx, input, load, touch, start, ratio_hint, out)?;
         let final_approach = out.z - touch;
         if approach > 0.0 && final_approach > 0.0 {
-            strip_ratios = [final_approach / approach; 2];
+            strip_ratio = final_approach / approach;
         }
     }
     check_balance(side.name, load, out)?;
     assign_slots(&mut side.slots, out);
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)
-        .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratios));
+        .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratio));
     Ok(())
 }
 

@@ -56,7 +56,7 @@ fn solve(ws: &mut Wheelset, y: f64) -> WheelsetResult {
 
 /// Total area [m²] and largest pressure [Pa] of a wheel.
 fn area_and_pmax(side: &SideResult) -> (f64, f64) {
-    let patches = &side.patches[..side.n_patches];
+    let patches: Vec<_> = side.shown_patches().copied().collect();
     (
         patches.iter().map(|p| p.area).sum(),
         patches.iter().map(|p| p.pmax).fold(0.0, f64::max),
@@ -186,7 +186,7 @@ fn every_model_is_finite_over_lateral_shifts() {
                     "{} at y = {y} mm: area {area}, pmax {pmax}",
                     model.name()
                 );
-                for p in &side.patches[..side.n_patches] {
+                for p in side.shown_patches() {
                     for v in [p.fn_, p.fx, p.fy, p.mz, p.length, p.width, p.y_rail] {
                         assert!(v.is_finite(), "{} at y = {y} mm: {p:?}", model.name());
                     }

@@ -48,7 +48,7 @@ fn tangential_force(model: NormalModel, fine: bool, creepage: Creepage) -> [f64;
     let mut out = WheelsetResult::default();
     ws.solve(&input, &mut out).unwrap();
     let side = &out.right;
-    side.patches[..side.n_patches]
+    side.all_patches()
         .iter()
         .fold([0.0, 0.0], |f, p| [f[0] + p.fx, f[1] + p.fy])
 }

@@ -54,7 +54,7 @@ fn model_and_oracle(ws: &mut Wheelset, y: f64) -> ((f64, f64), (f64, f64)) {
     };
     let mut out = WheelsetResult::default();
     ws.solve(&input, &mut out).expect("solve");
-    let patches = &out.right.patches[..out.right.n_patches];
+    let patches: Vec<_> = out.right.shown_patches().copied().collect();
     let area = patches.iter().map(|p| p.area).sum();
     let pmax = patches.iter().map(|p| p.pmax).fold(0.0, f64::max);
     let normal_force: f64 = patches.iter().map(|p| p.fn_).sum();

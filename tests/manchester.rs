@@ -256,8 +256,7 @@ fn data() -> &'static Data {
 /// The patch carrying the largest normal force.
 fn dominant(side: &SideResult) -> &PatchResult {
     assert!(side.n_patches > 0, "no contact patch: {side:?}");
-    side.patches[..side.n_patches]
-        .iter()
+    side.shown_patches()
         .max_by(|a, b| a.fn_.total_cmp(&b.fn_))
         .unwrap()
 }
@@ -652,7 +651,7 @@ fn non_elliptic_models_area_and_pmax_against_contact() {
         print!("{:4.1} {:8.1} {:6.0} |", r.y_mm, ref_area, r.pmax_mpa);
         for (m, res) in NormalModel::ALL[1..].iter().zip(&results) {
             let side = &res[k].right;
-            let patches = &side.patches[..side.n_patches];
+            let patches: Vec<_> = side.shown_patches().copied().collect();
             let area: f64 = patches.iter().map(|p| p.area).sum::<f64>() * 1e6;
             let pmax = patches.iter().map(|p| p.pmax).fold(0.0, f64::max) / 1e6;
             assert!(

@@ -268,7 +268,7 @@ fn report_reproduces_the_figures_and_the_error_table() {
         (NormalModel::StripesAB, "5 STRIPES-A&B"),
     ] {
         let right = solve(model, TangentialModel::ModelDefault, false, ROLLING).right;
-        let patches = &right.patches[..right.n_patches];
+        let patches: Vec<_> = right.shown_patches().copied().collect();
         let area_mm2 = patches.iter().map(|p| p.area).sum::<f64>() * 1e6;
         let pmax_mpa = patches.iter().map(|p| p.pmax).fold(0.0, f64::max) * 1e-6;
         let (value, reference, error) = key("central", label, "-", "-", "area");

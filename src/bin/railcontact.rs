@@ -484,12 +484,13 @@ fn solve(
         ("left", &patches.left, false),
         ("right", &patches.right, true),
     ] {
-        let mut model_strips = wheelset
-            .strip_patches(right)
+        for (k, patch) in result
+            .patches
             .iter()
-            .filter(|p| p.summary().in_contact());
-        for (k, patch) in result.patches[..result.n_patches].iter().enumerate() {
-            let table = match model_strips.next() {
+            .enumerate()
+            .filter(|(_, p)| p.weight > 0.0)
+        {
+            let table = match wheelset.strip_patch_of_slot(right, k) {
                 Some(sp) => patch_strips(sp),
                 None => strips(patch),
             };
@@ -556,7 +557,7 @@ fn solve(
             ("left", &patches.left, false),
             ("right", &patches.right, true),
         ] {
-            for k in 0..result.n_patches {
+            for k in 0..result.patches.len() {
                 let Some(field) = wheelset.traction_field(right, k) else {
                     continue;
                 };

@@ -7,6 +7,7 @@ use super::{fastsim_settings, set_output};
 use crate::fastsim::Creepage;
 use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::{IntegerVar, RealVar, Values};
+use crate::patch_groups::MAX_GROUPS;
 use crate::patch_tangential::TangentialModel;
 use crate::point_contact::Material;
 use crate::profile::{Profile, ProfileKind};
@@ -14,7 +15,7 @@ use crate::strips::NormalModel;
 use crate::track::TrackSetup;
 use crate::validity::validity;
 use crate::wheelset::{
-    Creepages, SideResult, Vertical, WarmStart, Wheelset, WheelsetError, WheelsetInput,
+    Creepages, SideResult, Slot, Vertical, WarmStart, Wheelset, WheelsetError, WheelsetInput,
     WheelsetResult, WheelsetSettings, MAX_PATCHES,
 };
 use std::path::{Path, PathBuf};
@@ -446,12 +447,15 @@ impl Model for WheelRailContact {
         })
     }
 
-    /// The load iteration's warm starts (`wheelset::WarmStart`, left then right): a version
-    /// byte, then per wheel a presence byte and the approach [m], creep component [N] and their
-    /// changes over the last step as little-endian f64. Nothing before initialization.
+    /// The solver's history (the load iteration's warm starts, `wheelset::WarmStart`, and the
+    /// patches' output slots, `wheelset::Slot`): a version byte, then per wheel (left, right) a
+    /// presence byte and the approach [m], creep component [N], their changes over the last
+    /// step and the strip ratio as little-endian f64, then per wheel and output slot a presence
+    /// byte, the patch's `yRail` [m] as little-endian f64 and its index among the wheel's
+    /// patches. Nothing before initialization.
     fn save_state(&self, out: &mut Vec<u8>) {
         if let Some(solver) = &self.solver {
-            write_warm_start(solver.wheelset.warm_start(), out);
+            write_history(solver.wheelset.warm_start(), solver.wheelset.slots(), out);
         }
     }
 
@@ -461,26 +465,33 @@ impl Model for WheelRailContact {
                 Ok(())
             } else {
                 Err(format!(
-                    "FMU state holds {} bytes of warm start for an instance that is not initialized",
+                    "FMU state holds {} bytes of solver history for an instance that is not \
+                     initialized",
                     bytes.len()
                 ))
             };
         };
-        solver.wheelset.set_warm_start(parse_warm_start(bytes)?);
+        let (warm, slots) = parse_history(bytes)?;
+        solver.wheelset.set_warm_start(warm);
+        solver.wheelset.set_slots(slots);
         Ok(())
     }
 }
 
-/// Version of the warm-start layout in FMU states (2: with the changes over the last step; 3:
-/// with the strip models' approach ratio; 4: with their final approach ratio).
-const WARM_STATE_VERSION: u8 = 4;
+/// Version of the solver-history layout in FMU states (5: warm start with one strip ratio, and
+/// the output slots).
+const HISTORY_VERSION: u8 = 5;
 /// Values of one wheel's warm start in the layout ([`warm_fields`]).
-const WARM_FIELDS: usize = 6;
+const WARM_FIELDS: usize = 5;
 /// Bytes of one wheel's warm start: presence flag, then its values as little-endian f64.
 const WARM_SIDE_BYTES: usize = 1 + WARM_FIELDS * 8;
+/// Bytes of one output slot: presence flag, `yRail` as little-endian f64, patch index.
+const SLOT_BYTES: usize = 1 + 8 + 1;
+/// Bytes of the whole history.
+const HISTORY_BYTES: usize = 1 + 2 * WARM_SIDE_BYTES + 2 * MAX_PATCHES * SLOT_BYTES;
 
 /// The warm start's values in the state layout's order: approach, creep component, their
-/// changes, the strip ratio, the final ratio.
+/// changes, the strip ratio.
 fn warm_fields(w: &WarmStart) -> [f64; WARM_FIELDS] {
     [
         w.approach,
@@ -488,13 +499,16 @@ fn warm_fields(w: &WarmStart) -> [f64; WARM_FIELDS] {
         w.approach_step,
         w.creep_step,
         w.strip_ratio,
-        w.final_ratio,
     ]
 }
 
-/// Appends the warm starts in the layout of [`Model::save_state`].
-fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
-    out.push(WARM_STATE_VERSION);
+/// Appends the warm starts and output slots in the layout of [`Model::save_state`].
+fn write_history(
+    warm: [Option<WarmStart>; 2],
+    slots: [[Option<Slot>; MAX_PATCHES]; 2],
+    out: &mut Vec<u8>,
+) {
+    out.push(HISTORY_VERSION);
     for side in warm {
         out.push(u8::from(side.is_some()));
         let w = side.unwrap_or(WarmStart {
@@ -503,22 +517,36 @@ fn write_warm_start(warm: [Option<WarmStart>; 2], out: &mut Vec<u8>) {
             approach_step: 0.0,
             creep_step: 0.0,
             strip_ratio: 1.0,
-            final_ratio: 1.0,
         });
         for v in warm_fields(&w) {
             out.extend_from_slice(&v.to_le_bytes());
         }
     }
+    for slot in slots.iter().flatten() {
+        out.push(u8::from(slot.is_some()));
+        let (y_rail, group) = slot.map_or((0.0, 0), |s| (s.y_rail, s.group));
+        out.extend_from_slice(&y_rail.to_le_bytes());
+        out.push(group as u8);
+    }
 }
 
-/// Reads what [`Model::save_state`] wrote; rejects any other length, version or flag, and
-/// non-finite values or non-positive approaches.
-fn parse_warm_start(bytes: &[u8]) -> Result<[Option<WarmStart>; 2], String> {
-    let expected = 1 + 2 * WARM_SIDE_BYTES;
-    if bytes.len() != expected || bytes[0] != WARM_STATE_VERSION {
+/// Little-endian f64 at byte `i` of `bytes`.
+fn f64_at(bytes: &[u8], i: usize) -> f64 {
+    let mut b = [0u8; 8];
+    b.copy_from_slice(&bytes[i..i + 8]);
+    f64::from_le_bytes(b)
+}
+
+/// The warm starts and output slots of a history; rejects any other length, version or flag,
+/// non-finite values, non-positive approaches and patch indices out of range.
+type History = ([Option<WarmStart>; 2], [[Option<Slot>; MAX_PATCHES]; 2]);
+
+/// Reads what [`Model::save_state`] wrote (see [`History`]).
+fn parse_history(bytes: &[u8]) -> Result<History, String> {
+    if bytes.len() != HISTORY_BYTES || bytes[0] != HISTORY_VERSION {
         return Err(format!(
-            "FMU state: warm start of {} bytes, version {:?} (expected {expected} bytes, version \
-             {WARM_STATE_VERSION})",
+            "FMU state: solver history of {} bytes, version {:?} (expected {HISTORY_BYTES} \
+             bytes, version {HISTORY_VERSION})",
             bytes.len(),
             bytes.first()
         ));
@@ -526,42 +554,51 @@ fn parse_warm_start(bytes: &[u8]) -> Result<[Option<WarmStart>; 2], String> {
     let mut warm = [None; 2];
     for (side, chunk) in warm
         .iter_mut()
-        .zip(bytes[1..].chunks_exact(WARM_SIDE_BYTES))
+        .zip(bytes[1..1 + 2 * WARM_SIDE_BYTES].chunks_exact(WARM_SIDE_BYTES))
     {
-        let f64_at = |i: usize| {
-            let mut b = [0u8; 8];
-            b.copy_from_slice(&chunk[i..i + 8]);
-            f64::from_le_bytes(b)
-        };
-        let values: [f64; WARM_FIELDS] = std::array::from_fn(|k| f64_at(1 + 8 * k));
+        let values: [f64; WARM_FIELDS] = std::array::from_fn(|k| f64_at(chunk, 1 + 8 * k));
         // The order of `warm_fields`.
-        let [approach, creep, approach_step, creep_step, strip_ratio, final_ratio] = values;
+        let [approach, creep, approach_step, creep_step, strip_ratio] = values;
         let finite = [creep, approach_step, creep_step]
             .iter()
             .all(|v| v.is_finite());
         let positive = |v: f64| v > 0.0 && v.is_finite();
         *side = match chunk[0] {
             0 => None,
-            1 if positive(approach) && finite && positive(strip_ratio) && positive(final_ratio) => {
-                Some(WarmStart {
-                    approach,
-                    creep,
-                    approach_step,
-                    creep_step,
-                    strip_ratio,
-                    final_ratio,
-                })
-            }
+            1 if positive(approach) && finite && positive(strip_ratio) => Some(WarmStart {
+                approach,
+                creep,
+                approach_step,
+                creep_step,
+                strip_ratio,
+            }),
             flag => {
                 return Err(format!(
                     "FMU state: invalid warm start (flag {flag}, approach {approach} m, creep \
                      component {creep} N, their changes {approach_step} m and {creep_step} N, \
-                     strip ratios {strip_ratio} and {final_ratio})"
+                     strip ratio {strip_ratio})"
                 ))
             }
         };
     }
-    Ok(warm)
+    let mut slots = [[None; MAX_PATCHES]; 2];
+    for (slot, chunk) in slots
+        .iter_mut()
+        .flatten()
+        .zip(bytes[1 + 2 * WARM_SIDE_BYTES..].chunks_exact(SLOT_BYTES))
+    {
+        let (y_rail, group) = (f64_at(chunk, 1), chunk[9] as usize);
+        *slot = match chunk[0] {
+            0 => None,
+            1 if y_rail.is_finite() && group < MAX_GROUPS => Some(Slot { y_rail, group }),
+            flag => {
+                return Err(format!(
+                    "FMU state: invalid output slot (flag {flag}, yRail {y_rail} m, patch {group})"
+                ))
+            }
+        };
+    }
+    Ok((warm, slots))
 }
 
 #[cfg(test)]
@@ -620,14 +657,14 @@ mod tests {
         let _ = std::fs::remove_dir_all(&resources);
     }
 
-    fn bytes_of(warm: [Option<WarmStart>; 2]) -> Vec<u8> {
+    fn bytes_of(warm: [Option<WarmStart>; 2], slots: [[Option<Slot>; MAX_PATCHES]; 2]) -> Vec<u8> {
         let mut out = Vec::new();
-        write_warm_start(warm, &mut out);
+        write_history(warm, slots, &mut out);
         out
     }
 
     #[test]
-    fn warm_start_bytes_round_trip_and_corruption_is_rejected() {
+    fn history_bytes_round_trip_and_corruption_is_rejected() {
         let warm = [
             None,
             Some(WarmStart {
@@ -636,30 +673,44 @@ mod tests {
                 approach_step: -2.5e-8,
                 creep_step: 0.75,
                 strip_ratio: 1.25,
-                final_ratio: 1.125,
             }),
         ];
-        let bytes = bytes_of(warm);
-        assert_eq!(parse_warm_start(&bytes), Ok(warm));
-        // Wrong length, version, flag; a non-positive or non-finite approach or strip ratio
-        // (either); a NaN creep or change.
-        assert!(parse_warm_start(&bytes[..bytes.len() - 1]).is_err());
+        let mut slots = [[None; MAX_PATCHES]; 2];
+        slots[1][0] = Some(Slot {
+            y_rail: -0.0123,
+            group: 2,
+        });
+        slots[1][2] = Some(Slot {
+            y_rail: -0.0351,
+            group: 0,
+        });
+        let bytes = bytes_of(warm, slots);
+        assert_eq!(parse_history(&bytes), Ok((warm, slots)));
+        // Wrong length, version, flag; a non-positive or non-finite approach or strip ratio; a
+        // NaN creep or change; a slot's patch index out of range or a non-finite yRail.
+        assert!(parse_history(&bytes[..bytes.len() - 1]).is_err());
         let mut v = bytes.clone();
-        v[0] = 1;
-        assert!(parse_warm_start(&v).is_err());
+        v[0] = 4;
+        assert!(parse_history(&v).is_err());
         let mut v = bytes.clone();
         v[1] = 7;
-        assert!(parse_warm_start(&v).is_err());
-        for (approach, creep, creep_step, strip_ratio, final_ratio) in [
-            (0.0, 0.0, 0.0, 1.0, 1.0),
-            (-1e-5, 0.0, 0.0, 1.0, 1.0),
-            (f64::INFINITY, 0.0, 0.0, 1.0, 1.0),
-            (1e-5, f64::NAN, 0.0, 1.0, 1.0),
-            (1e-5, 0.0, f64::INFINITY, 1.0, 1.0),
-            (1e-5, 0.0, 0.0, 0.0, 1.0),
-            (1e-5, 0.0, 0.0, f64::NAN, 1.0),
-            (1e-5, 0.0, 0.0, 1.0, -1.0),
-            (1e-5, 0.0, 0.0, 1.0, f64::INFINITY),
+        assert!(parse_history(&v).is_err());
+        let slot_start = 1 + 2 * WARM_SIDE_BYTES + MAX_PATCHES * SLOT_BYTES;
+        let mut v = bytes.clone();
+        v[slot_start + 9] = MAX_GROUPS as u8;
+        assert!(parse_history(&v).is_err());
+        let mut v = bytes.clone();
+        v[slot_start + 1..slot_start + 9].copy_from_slice(&f64::NAN.to_le_bytes());
+        assert!(parse_history(&v).is_err());
+        for (approach, creep, creep_step, strip_ratio) in [
+            (0.0, 0.0, 0.0, 1.0),
+            (-1e-5, 0.0, 0.0, 1.0),
+            (f64::INFINITY, 0.0, 0.0, 1.0),
+            (1e-5, f64::NAN, 0.0, 1.0),
+            (1e-5, 0.0, f64::INFINITY, 1.0),
+            (1e-5, 0.0, 0.0, 0.0),
+            (1e-5, 0.0, 0.0, f64::NAN),
+            (1e-5, 0.0, 0.0, -1.0),
         ] {
             let w = WarmStart {
                 approach,
@@ -667,10 +718,9 @@ mod tests {
                 approach_step: 0.0,
                 creep_step,
                 strip_ratio,
-                final_ratio,
             };
-            let v = bytes_of([Some(w), None]);
-            assert!(parse_warm_start(&v).is_err(), "{w:?}");
+            let v = bytes_of([Some(w), None], slots);
+            assert!(parse_history(&v).is_err(), "{w:?}");
         }
     }
 }

@@ -219,7 +219,7 @@ impl Study {
         });
         let result = runner.solve()?;
         let normal = runner.normal_run(&result.right);
-        let cells = (0..result.right.n_patches)
+        let cells = (0..result.right.patches.len())
             .filter_map(|k| runner.wheelset.traction_field(true, k))
             .flat_map(|field| cells(&field))
             .collect();
@@ -308,10 +308,7 @@ impl Runner {
             .filter(|p| p.summary().in_contact())
             .collect();
         let patches: Vec<Vec<StripRow>> = if model == NormalModel::Hertz {
-            side.patches[..side.n_patches]
-                .iter()
-                .map(ellipse_strips)
-                .collect()
+            side.shown_patches().map(ellipse_strips).collect()
         } else {
             let params = NormalParams {
                 e_star: contact_modulus(
@@ -360,7 +357,7 @@ pub fn tangential_code(t: TangentialModel) -> i32 {
 
 /// Totals of a wheel's patches.
 pub fn totals(side: &SideResult) -> Totals {
-    let patches = &side.patches[..side.n_patches.min(side.patches.len())];
+    let patches = side.all_patches();
     let area: f64 = patches.iter().map(|p| p.area).sum();
     Totals {
         fn_: patches.iter().map(|p| p.fn_).sum(),
