@@ -1765,84 +1765,157 @@ impl WheelOnRail {
         &self.candidates
     }
 
-    /// The refined local minima of the samples below the filled level (see `candidates`).
+    /// The refined local minima of the gap below the filled level (see `candidates`) and the
+    /// ridges between them.
+    ///
+    /// The extrema are found on the cubic Hermite interpolant of the samples' gaps and slopes
+    /// (one per sample interval: the roots of its derivative), not by comparing samples: a
+    /// minimum narrower than the sample spacing — one just born at a fold, where a shoulder of
+    /// the gap turns into a minimum and a ridge — is found as soon as the interpolant shows it
+    /// (near a fold the gap is locally cubic, which the interpolant reproduces), so that its
+    /// ridge is still low when it appears and the patch groups take it in without a jump.
+    /// Each minimum is then refined on the exact gap inside the stretch between its
+    /// neighbouring critical points of the interpolant, and each ridge likewise.
     fn find_candidates(&mut self) {
         let s = std::mem::take(&mut self.samples);
         let n = s.len() - 1;
         let (lo, step, level, p) = (self.scan_lo, self.scan_dw, self.filled_level, self.pose);
-        // Interior local minima, scanned from the gauge side (small w) to the field side.
-        // Minima separated by a ridge less than MIN_PROMINENCE above the shallower one are
-        // merged, and so is any minimum beyond MAX_CANDIDATES into the last kept one (keeping the
-        // deeper). Only minima below the filled level less MIN_PROMINENCE: their neighbours are
-        // computed, and a ridge through an unfilled interval (above the level) separates them
-        // as the full scan's would.
-        let mut found = [0usize; MAX_CANDIDATES];
-        // The highest sample between found[k] and found[k + 1] (an unfilled one is above the
-        // level: its gap is infinite).
-        let mut ridge_at = [0usize; MAX_CANDIDATES];
-        let mut count = 0usize;
-        let mut ridge = f64::NEG_INFINITY;
-        let mut ridge_index = 0usize;
-        // Minima below the level lie in the filled span.
+        // Critical points of the interpolant, ascending in w (see [`Extremum`]). Minima below
+        // the level lie in the filled span.
         let (span_lo, span_hi) = self.filled_span;
-        for i in span_lo.max(1)..span_hi.min(n) {
-            let g = s[i].gap;
-            if g > ridge {
-                (ridge, ridge_index) = (g, i);
-            }
-            if !(g < level - MIN_PROMINENCE && g <= s[i - 1].gap && g < s[i + 1].gap) {
+        let mut found = [Extremum::default(); MAX_CANDIDATES];
+        let mut ridge_between = [Extremum::default(); MAX_CANDIDATES];
+        let mut count = 0usize;
+        let mut ridge = Extremum::default();
+        ridge.value = f64::NEG_INFINITY;
+        let mut unfilled_since_last = false;
+        for k in span_lo..span_hi.min(n) {
+            let (a, b) = (&s[k], &s[k + 1]);
+            if !(a.gap.is_finite() && b.gap.is_finite()) {
+                unfilled_since_last = true;
                 continue;
             }
-            if count > 0 {
-                let prev = found[count - 1];
-                let separate = ridge - s[prev].gap.max(g) >= MIN_PROMINENCE;
-                if !separate || count == MAX_CANDIDATES {
-                    if g < s[prev].gap {
-                        found[count - 1] = i;
-                    }
-                    (ridge, ridge_index) = (g, i);
+            // A sample is a ridge candidate too (the maximum between two minima may sit on a
+            // sample where the interpolant's pieces meet with a kink).
+            if a.gap > ridge.value && k > span_lo {
+                ridge = Extremum {
+                    at: k as f64,
+                    value: a.gap,
+                    bracket: ((k as f64 - 1.0).max(0.0), (k as f64 + 1.0).min(n as f64)),
+                };
+            }
+            let cubic = hermite_depth(0.0, a.gap, b.gap, a.slope * step, b.slope * step);
+            // The interpolant is −cubic: its derivative's roots in [0, 1).
+            let (c1, c2, c3) = (-cubic[1], -cubic[2], -cubic[3]);
+            let mut roots = [f64::NAN; 2];
+            quadratic_roots(3.0 * c3, 2.0 * c2, c1, &mut roots);
+            let valid = |t: f64| (0.0..1.0).contains(&t);
+            let (r0, r1) = (roots[0], roots[1]);
+            for (idx, t) in [r0, r1].into_iter().enumerate() {
+                if !valid(t) {
                     continue;
                 }
-                ridge_at[count - 1] = ridge_index;
+                let curvature = 2.0 * c2 + 6.0 * c3 * t;
+                // cubic = 0 − H: the interpolant's value is −cubic(t).
+                let value = -cubic_at(&cubic, t);
+                let other = if idx == 0 { r1 } else { r0 };
+                let (mut lo_t, mut hi_t) = (0.0, 1.0);
+                if (0.0..=1.0).contains(&other) {
+                    if other < t {
+                        lo_t = other;
+                    } else if other > t {
+                        hi_t = other;
+                    }
+                }
+                let kf = k as f64;
+                let e = Extremum {
+                    at: kf + t,
+                    value,
+                    bracket: (kf + lo_t, kf + hi_t),
+                };
+                if curvature < 0.0 {
+                    if value > ridge.value {
+                        ridge = e;
+                    }
+                    continue;
+                }
+                if !(curvature > 0.0 && value < level - MIN_PROMINENCE) {
+                    continue;
+                }
+                if count > 0 {
+                    let prev = found[count - 1];
+                    let height = if unfilled_since_last {
+                        f64::INFINITY
+                    } else {
+                        ridge.value - prev.value.max(value)
+                    };
+                    if height < MIN_PROMINENCE || count == MAX_CANDIDATES {
+                        if value < prev.value {
+                            found[count - 1] = e;
+                        }
+                        ridge = e;
+                        unfilled_since_last = false;
+                        continue;
+                    }
+                    ridge_between[count - 1] = if unfilled_since_last {
+                        Extremum {
+                            value: f64::INFINITY,
+                            ..ridge
+                        }
+                    } else {
+                        ridge
+                    };
+                }
+                found[count] = e;
+                count += 1;
+                ridge = e;
+                unfilled_since_last = false;
             }
-            found[count] = i;
-            count += 1;
-            (ridge, ridge_index) = (g, i);
         }
+        let lateral = |t: f64| lo + step * t;
         // Refine and describe, field side first (largest w first); a minimum refined at a
         // lower level of this search is taken over (its samples are the same).
         let mut candidates = ContactCandidates::default();
         let mut minima = [0usize; MAX_CANDIDATES];
-        for (k, &i) in found[..count].iter().rev().enumerate() {
-            minima[k] = i;
-            let known = (0..self.candidates.len()).find(|&j| self.candidate_minima[j] == i);
+        for (k, e) in found[..count].iter().rev().enumerate() {
+            let key = (e.at * 1024.0) as usize;
+            minima[k] = key;
+            let known = (0..self.candidates.len()).find(|&j| self.candidate_minima[j] == key);
             let point = match known {
                 Some(j) => self.candidates.points[j],
                 None => {
-                    let a = lo + step * (i - 1) as f64;
-                    let b = lo + step * (i + 1) as f64;
-                    let (w, refined) = self.refine((a, s[i - 1]), (b, s[i + 1]), s[i], &p);
+                    let (a, b) = (lateral(e.bracket.0), lateral(e.bracket.1));
+                    let (sa, sb) = (self.sample(a, &p), self.sample(b, &p));
+                    let mid = self.sample(lateral(e.at), &p);
+                    let (w, refined) = self.refine((a, sa), (b, sb), mid, &p);
                     self.describe(w, &refined)
                 }
             };
             candidates.push(point);
         }
         // Ridges between neighbouring candidates (field side first, as the candidates): the
-        // highest sample between them refined to the gap's local maximum, or none where an
-        // unfilled interval lies between them (the ridge is above the filled level).
+        // highest critical point or sample between them refined to the gap's local maximum, or
+        // none where an unfilled interval lies between them (the ridge is above the filled
+        // level).
         let mut ridges = [None; MAX_CANDIDATES];
         for k in 0..count.saturating_sub(1) {
             // Candidate k (field side) is found[count − 1 − k]; the ridge before it is
-            // ridge_at[count − 2 − k].
-            let i = ridge_at[count - 2 - k];
+            // ridge_between[count − 2 − k].
+            let e = ridge_between[count - 2 - k];
             let (outer, inner) = (&candidates.points[k], &candidates.points[k + 1]);
-            ridges[k] = s[i].gap.is_finite().then(|| {
-                let a = (lo + step * (i - 1) as f64).max(inner.lateral);
-                let b = (lo + step * (i + 1) as f64).min(outer.lateral);
+            ridges[k] = e.value.is_finite().then(|| {
+                let a = lateral(e.bracket.0).max(inner.lateral);
+                let b = lateral(e.bracket.1).min(outer.lateral);
                 let (w, top) = self.refine_ridge(a, b, &p);
+                // A sample's gap is exact: the ridge is at least that high.
+                let sampled = if e.at.fract() == 0.0 {
+                    e.value
+                } else {
+                    f64::NEG_INFINITY
+                };
                 Ridge {
                     lateral: w,
-                    gap: top.gap.max(s[i].gap),
+                    gap: top.gap.max(sampled),
                 }
             });
         }
@@ -1851,6 +1924,37 @@ impl WheelOnRail {
         self.ridges = ridges;
         self.samples = s;
     }
+}
+
+/// A critical point of the gap's interpolant ([`WheelOnRail::find_candidates`]).
+#[derive(Debug, Clone, Copy, Default)]
+struct Extremum {
+    /// Fractional sample index.
+    at: f64,
+    /// The interpolant's value there [m].
+    value: f64,
+    /// Fractional sample indices of the neighbouring critical points (or the interval's ends).
+    bracket: (f64, f64),
+}
+
+/// Real roots of a t² + b t + c, ascending, into `out` (NaN where there are fewer than two).
+fn quadratic_roots(a: f64, b: f64, c: f64, out: &mut [f64; 2]) {
+    *out = [f64::NAN; 2];
+    if a == 0.0 {
+        if b != 0.0 {
+            out[0] = -c / b;
+        }
+        return;
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return;
+    }
+    let r = disc.sqrt();
+    // Cancellation-free roots.
+    let q = -0.5 * (b + if b >= 0.0 { r } else { -r });
+    let (x0, x1) = (q / a, if q != 0.0 { c / q } else { f64::NAN });
+    *out = if x1 < x0 { [x1, x0] } else { [x0, x1] };
 }
 
 #[cfg(test)]

@@ -60,24 +60,34 @@ pub fn smoothstep(u: f64) -> f64 {
 /// patch — are one patch, not a blend.
 pub const MERGED_SUBMERGENCE: f64 = 0.8;
 
-/// Smallest depth scale of a merge fraction, as a fraction of the level's depth below the
-/// deepest minimum: a ridge less than this high above a basin merges it with its neighbour
-/// also where the basin lies above the level (a shoulder of the neighbour's patch at the level
-/// where the merging is decided, possibly in contact at the wheel's actual lowering), so that a
-/// minimum always vanishes at a fold (its ridge height → 0) as part of its neighbour's group.
+/// Smallest depth scale of a merge fraction where shoulders merge, as a fraction of the level's
+/// depth below the deepest minimum: a ridge less than this high above a basin merges it with
+/// its neighbour also where the basin lies above the level (a shoulder of the neighbour's patch
+/// at the level where the merging is decided, possibly in contact at the wheel's actual
+/// lowering), so that a minimum always vanishes at a fold (its ridge height → 0) as part of its
+/// neighbour's group. For the multi-Hertzian patches, whose merge level is an estimate of the
+/// wheel's approach; not for the strip layout, whose level lies beyond the approach (a basin
+/// entering there merged at once would widen its group's strips abruptly).
 pub const SHOULDER_FRACTION: f64 = 0.1;
 
 /// Merge fraction t of a ridge at gap `ridge` (`None`: above every level considered) between
 /// basins whose deepest gaps are `gap_a` and `gap_b`, at interpenetration level `level`, with
 /// the deepest minimum of the wheel at `deepest` (all vertical gaps, [m]). The shallower basin's
-/// depth below the level counts as at least [`SHOULDER_FRACTION`] of the level's depth. See the
-/// module documentation.
-pub fn merge_fraction(level: f64, deepest: f64, gap_a: f64, gap_b: f64, ridge: Option<f64>) -> f64 {
+/// depth below the level counts as at least `shoulder` (0 or [`SHOULDER_FRACTION`]) of the
+/// level's depth. See the module documentation.
+pub fn merge_fraction(
+    level: f64,
+    deepest: f64,
+    gap_a: f64,
+    gap_b: f64,
+    ridge: Option<f64>,
+    shoulder: f64,
+) -> f64 {
     let Some(ridge) = ridge else {
         return 0.0;
     };
     let shallower = gap_a.max(gap_b);
-    let depth = (level - shallower).max(SHOULDER_FRACTION * (level - deepest));
+    let depth = (level - shallower).max(shoulder * (level - deepest));
     if !(depth > 0.0) {
         return 0.0;
     }
@@ -144,7 +154,13 @@ impl GroupLayout {
     /// groups whose deepest member lies below `contact_level` [m] (the lowering: the others
     /// touch nothing) and whose weight reaches [`GROUP_WEIGHT_MIN`] are kept; if more than
     /// [`MAX_GROUPS`] remain, the heaviest.
-    pub fn new(gaps: &[f64], ridges: &[Option<f64>], level: f64, contact_level: f64) -> Self {
+    pub fn new(
+        gaps: &[f64],
+        ridges: &[Option<f64>],
+        level: f64,
+        contact_level: f64,
+        shoulder: f64,
+    ) -> Self {
         let m = gaps.len().min(MAX_CANDIDATES);
         let mut merge = [0.0; MAX_CANDIDATES];
         let deepest = gaps[..m].iter().copied().fold(f64::INFINITY, f64::min);
@@ -153,7 +169,14 @@ impl GroupLayout {
             // from ridge r, is i − 1 on the low side (i < r) and i on the high side (i > r + 1).
             let low = basin_bottom(gaps, ridges, r, (0..=r).rev(), |i| (i < r).then_some(i));
             let high = basin_bottom(gaps, ridges, r, r + 1..m, |i| (i > r + 1).then(|| i - 1));
-            merge[r] = merge_fraction(level, deepest, low, high, ridges.get(r).copied().flatten());
+            merge[r] = merge_fraction(
+                level,
+                deepest,
+                low,
+                high,
+                ridges.get(r).copied().flatten(),
+                shoulder,
+            );
         }
         let mut layout = Self::default();
         for first in 0..m {
@@ -231,28 +254,44 @@ mod tests {
         // Two minima 10 µm apart in depth; level 100 µm above the deeper.
         let gaps = [0.0, 10e-6];
         // Ridge above the level: two groups of weight 1.
-        let split = GroupLayout::new(&gaps, &[Some(150e-6)], 100e-6, 100e-6);
+        let split = GroupLayout::new(&gaps, &[Some(150e-6)], 100e-6, 100e-6, SHOULDER_FRACTION);
         assert_eq!(split.groups().len(), 2);
         assert!(split.groups().iter().all(|g| g.weight == 1.0));
         // No ridge left above the shallower minimum: one group.
-        let merged = GroupLayout::new(&gaps, &[Some(10e-6)], 100e-6, 100e-6);
+        let merged = GroupLayout::new(&gaps, &[Some(10e-6)], 100e-6, 100e-6, SHOULDER_FRACTION);
         assert_eq!(merged.groups().len(), 1);
         let g = merged.groups()[0];
         assert_eq!((g.first, g.last, g.weight), (0, 1, 1.0));
         // Half submerged: the transition, every candidate fully covered.
-        let half = GroupLayout::new(&gaps, &[Some(55e-6)], 100e-6, 100e-6);
+        let half = GroupLayout::new(&gaps, &[Some(55e-6)], 100e-6, 100e-6, SHOULDER_FRACTION);
         assert_eq!(half.groups().len(), 3);
         for k in 0..2 {
             assert!((coverage(&half, k) - 1.0).abs() < 1e-12);
         }
         // A minimum above the level behind a high ridge merges with nothing ...
-        let above = GroupLayout::new(&[0.0, 150e-6], &[Some(200e-6)], 100e-6, 100e-6);
+        let above = GroupLayout::new(
+            &[0.0, 150e-6],
+            &[Some(200e-6)],
+            100e-6,
+            100e-6,
+            SHOULDER_FRACTION,
+        );
         assert_eq!(above.groups().len(), 1);
-        assert_eq!(merge_fraction(100e-6, 0.0, 0.0, 150e-6, Some(200e-6)), 0.0);
+        assert_eq!(
+            merge_fraction(100e-6, 0.0, 0.0, 150e-6, Some(200e-6), SHOULDER_FRACTION),
+            0.0
+        );
         // ... but a shoulder (its ridge less than a tenth of the level's depth above it) belongs
         // to its neighbour: a fold leaves no separate group behind.
         assert_eq!(
-            merge_fraction(100e-6, 0.0, 0.0, 150e-6, Some(150e-6 + 1e-9)),
+            merge_fraction(
+                100e-6,
+                0.0,
+                0.0,
+                150e-6,
+                Some(150e-6 + 1e-9),
+                SHOULDER_FRACTION
+            ),
             1.0
         );
     }
@@ -268,7 +307,13 @@ mod tests {
             let x = k as f64 / 4000.0;
             let gap_b = 20e-6 * (1.0 - 2.0 * x);
             let ridge = 130e-6 * (1.0 - x) + gap_b.max(0.0) * x;
-            let layout = GroupLayout::new(&[0.0, gap_b], &[Some(ridge)], level, level);
+            let layout = GroupLayout::new(
+                &[0.0, gap_b],
+                &[Some(ridge)],
+                level,
+                level,
+                SHOULDER_FRACTION,
+            );
             let now = [
                 weight(&layout, 0, 0),
                 weight(&layout, 1, 1),
@@ -290,8 +335,14 @@ mod tests {
         // minimum 2 is deeper than 1. Just before the fold the three-minimum layout must give
         // the two-minimum layout's weights (groups with 0 and 1 ↔ groups with 0).
         let (g0, g1, g2, r12) = (0.0, 30e-6, 5e-6, 60e-6);
-        let before = GroupLayout::new(&[g0, g1, g2], &[Some(g1 + 1e-12), Some(r12)], level, level);
-        let after = GroupLayout::new(&[g0, g2], &[Some(r12)], level, level);
+        let before = GroupLayout::new(
+            &[g0, g1, g2],
+            &[Some(g1 + 1e-12), Some(r12)],
+            level,
+            level,
+            SHOULDER_FRACTION,
+        );
+        let after = GroupLayout::new(&[g0, g2], &[Some(r12)], level, level, SHOULDER_FRACTION);
         assert!((weight(&before, 0, 1) - weight(&after, 0, 0)).abs() < 1e-9);
         assert!((weight(&before, 0, 2) - weight(&after, 0, 1)).abs() < 1e-9);
         assert!((weight(&before, 2, 2) - weight(&after, 1, 1)).abs() < 1e-9);
@@ -300,8 +351,13 @@ mod tests {
         let mut previous: Option<Vec<f64>> = None;
         for k in 0..=2000 {
             let r0 = 40e-6 + 20e-6 * (k as f64 / 2000.0);
-            let layout =
-                GroupLayout::new(&[0.0, 20e-6, 10e-6], &[Some(r0), Some(50e-6)], level, level);
+            let layout = GroupLayout::new(
+                &[0.0, 20e-6, 10e-6],
+                &[Some(r0), Some(50e-6)],
+                level,
+                level,
+                SHOULDER_FRACTION,
+            );
             let now: Vec<f64> = (0..3)
                 .flat_map(|a| (a..3).map(move |b| (a, b)))
                 .map(|(a, b)| weight(&layout, a, b))

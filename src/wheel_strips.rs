@@ -198,12 +198,13 @@ pub fn group_bounds(
 }
 
 /// The patch groups of the wheel's current search merged at the level `level` and in contact
-/// at the lowering `contact_level` [m] (see [`crate::patch_groups`]), with the candidates they
-/// refer to.
+/// at the lowering `contact_level` [m], shoulders merging with `shoulder` (see
+/// [`crate::patch_groups`]), with the candidates they refer to.
 pub fn groups_at(
     geometry: &mut WheelOnRail,
     level: f64,
     contact_level: f64,
+    shoulder: f64,
 ) -> (
     GroupLayout,
     [ContactPoint; crate::contact_search::MAX_CANDIDATES],
@@ -228,6 +229,7 @@ pub fn groups_at(
             &ridge_gaps[..m.saturating_sub(1)],
             level,
             contact_level,
+            shoulder,
         ),
         points,
         m,
@@ -272,7 +274,7 @@ impl StripSide {
         settings: &StripSettings,
         table: &HertzShapeTable,
     ) {
-        let (layout, candidates, m) = groups_at(geometry, level, level);
+        let (layout, candidates, m) = groups_at(geometry, level, level, 0.0);
         let candidates = &candidates[..m];
         let mut ridges = [None; crate::contact_search::MAX_CANDIDATES];
         ridges[..m.saturating_sub(1)].copy_from_slice(geometry.ridges());

@@ -722,7 +722,12 @@ fn evaluate_side(
         z: dz,
         ..SideResult::default()
     };
-    let (layout, candidates, m) = groups_at(&mut side.geometry, merge_level, dz);
+    let (layout, candidates, m) = groups_at(
+        &mut side.geometry,
+        merge_level,
+        dz,
+        crate::patch_groups::SHOULDER_FRACTION,
+    );
     let candidates = &candidates[..m];
     let mut ridges = [None; crate::contact_search::MAX_CANDIDATES];
     ridges[..m.saturating_sub(1)].copy_from_slice(side.geometry.ridges());
