@@ -56,6 +56,14 @@ pub const DEFAULT_SCAN_STEP: f64 = 5e-4;
 /// plane is inclined by less than ~10°, i.e. the flange no longer guides the wheel.
 pub const FLANGE_TIP_MARGIN: f64 = 2e-3;
 
+/// Inclination of the wheel profile below which a closest approach on the flange's tip side of
+/// its steepest point means the wheel rides on its flange [rad]: 0.45 rad (26°), where the
+/// flange's flank has turned into its tip radius (S1002: 5 mm from the tip on its R12 arc) and
+/// Nadal's limit Y/Q = (tan γ − μ)/(1 + μ tan γ) has fallen below 0.2 at μ = 0.3. It catches a
+/// wheel that a large roll sets on its flange top (the tip margin alone is measured along the
+/// profile, not against the rail).
+pub const FLANGE_CLIMB_ANGLE: f64 = 0.45;
+
 /// Fraction of a region's depth at which its reference point is taken (see `regions`).
 const VIRTUAL_FRACTION: f64 = crate::kik_piotrowski::KP_EPSILON;
 
@@ -253,6 +261,17 @@ fn flange_tip(wheel: &Profile) -> f64 {
         .map_or(f64::NEG_INFINITY, |(y, _)| *y)
 }
 
+/// The wheel-profile coordinate of the flange's steepest point: the largest |z'| between the
+/// flange tip `tip` and the taping line (y = 0), sampled every 10 µm.
+fn flange_steepest(wheel: &Profile, tip: f64) -> f64 {
+    const STEP: f64 = 1e-5;
+    let n = ((-tip) / STEP).ceil().max(1.0) as usize;
+    (0..=n)
+        .map(|i| tip * (1.0 - i as f64 / n as f64))
+        .max_by(|&a, &b| wheel.dz(a).abs().total_cmp(&wheel.dz(b).abs()))
+        .unwrap_or(tip)
+}
+
 /// A sample of the gap function.
 #[derive(Debug, Clone, Copy, Default)]
 struct GapSample {
@@ -316,6 +335,9 @@ pub struct WheelOnRail {
     b_min: f64,
     /// Wheel-profile coordinate of the flange tip (highest z on the flange side, y < 0) [m].
     flange_tip: f64,
+    /// Wheel-profile coordinate of the flange's steepest point (largest |z'| between the tip
+    /// and the taping line) [m].
+    flange_steepest: f64,
     /// max over the wheel profile's running side of z'² + r z'' [-] (r the radius there): the
     /// yawed wheel's lowest point is unique at yaw ψ with tan²ψ × this < 1 (`wheel_at`).
     wheel_convexity: f64,
@@ -718,6 +740,7 @@ impl WheelOnRail {
         }
         let rail = MountedRail::new(rail, setup)?;
         let flange_tip = flange_tip(&wheel);
+        let flange_steepest = flange_steepest(&wheel, flange_tip);
         let wheel_convexity = wheel_convexity(&wheel, setup.wheel_radius, flange_tip);
         let wheel_lead_bound = wheel_lead_bound(&wheel, setup.wheel_radius, flange_tip);
         let (r0, r1) = rail.profile().y_range();
@@ -733,6 +756,7 @@ impl WheelOnRail {
             scan_step,
             b_min,
             flange_tip,
+            flange_steepest,
             wheel_convexity,
             wheel_lead_bound,
             rail_bounds,
@@ -1553,13 +1577,16 @@ impl WheelOnRail {
         // Every sample below the deepest coarse one is computed: the deepest sample is exact.
         self.fill_to(coarse_deepest + INITIAL_FILL_DEPTH);
 
-        // Deepest sample overall: at a profile end means no contact inside the profiles.
+        // Deepest sample overall: at a profile end (within half a step of the overlap's
+        // bounds, or beyond them) means no contact inside the profiles.
         let s = &self.samples;
         let (span_lo, span_hi) = self.filled_span;
         let deepest = (span_lo..=span_hi)
             .min_by(|&a, &b| s[a].gap.total_cmp(&s[b].gap))
             .unwrap_or(0);
-        if deepest == 0 || deepest == n {
+        let w_deepest = lo + step * deepest as f64;
+        let (bound_lo, bound_hi) = self.scan_bounds;
+        if w_deepest <= bound_lo + 0.5 * step || w_deepest >= bound_hi - 0.5 * step {
             let y_rail = s[deepest].y_rail;
             return Err(SearchError::AtProfileEnd { lateral, y_rail });
         }
@@ -1568,7 +1595,9 @@ impl WheelOnRail {
         if !(wheel_lo..=wheel_hi).contains(&y_wheel) {
             return Err(SearchError::OutsideWheel { lateral, y_wheel });
         }
-        if y_wheel < self.flange_tip + FLANGE_TIP_MARGIN {
+        let on_flange_top = y_wheel < self.flange_steepest
+            && self.wheel.dz(y_wheel).abs().atan() < FLANGE_CLIMB_ANGLE;
+        if y_wheel < self.flange_tip + FLANGE_TIP_MARGIN || on_flange_top {
             return Err(SearchError::FlangeClimb { lateral, y_wheel });
         }
         self.find_candidates();
