@@ -686,7 +686,7 @@ fn positive_moments(c: &[f64; 4], t0: f64, t1: f64) -> [f64; 3] {
     n += 1;
     for w in knots[..n].windows(2) {
         let (a, b) = (w[0], w[1]);
-        if !(b > a) {
+        if b.partial_cmp(&a) != Some(std::cmp::Ordering::Greater) {
             continue;
         }
         let (pa, pb) = (cubic_at(c, a), cubic_at(c, b));
@@ -1754,7 +1754,7 @@ impl WheelOnRail {
             }
             k += 1;
         }
-        if !(sums[0] > 0.0) {
+        if sums[0].is_nan() || sums[0] <= 0.0 {
             return None;
         }
         let mean_t = sums[1] / sums[0];
@@ -1815,8 +1815,10 @@ impl WheelOnRail {
         let mut found = [Extremum::default(); MAX_CANDIDATES];
         let mut ridge_between = [Extremum::default(); MAX_CANDIDATES];
         let mut count = 0usize;
-        let mut ridge = Extremum::default();
-        ridge.value = f64::NEG_INFINITY;
+        let mut ridge = Extremum {
+            value: f64::NEG_INFINITY,
+            ..Extremum::default()
+        };
         let mut unfilled_since_last = false;
         for k in span_lo..span_hi.min(n) {
             let (a, b) = (&s[k], &s[k + 1]);

@@ -601,7 +601,7 @@ impl StripModel for KikPiotrowski {
                 peak_per_half_length += weight * PI * e_star * penetration_at / d3;
             }
         }
-        if !(peak_per_half_length > 0.0) {
+        if peak_per_half_length.is_nan() || peak_per_half_length <= 0.0 {
             return 0.0;
         }
         for i in 0..n {

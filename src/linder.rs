@@ -265,7 +265,7 @@ impl Linder {
             margin(n - 1),
             margin(n - 1),
         );
-        if !(sums[0] > 0.0) {
+        if sums[0].is_nan() || sums[0] <= 0.0 {
             return None;
         }
         let centre = sums[1] / sums[0];

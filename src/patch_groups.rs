@@ -88,7 +88,7 @@ pub fn merge_fraction(
     };
     let shallower = gap_a.max(gap_b);
     let depth = (level - shallower).max(shoulder * (level - deepest));
-    if !(depth > 0.0) {
+    if depth.is_nan() || depth <= 0.0 {
         return 0.0;
     }
     let height = (ridge - shallower).max(0.0);
@@ -164,12 +164,12 @@ impl GroupLayout {
         let m = gaps.len().min(MAX_CANDIDATES);
         let mut merge = [0.0; MAX_CANDIDATES];
         let deepest = gaps[..m].iter().copied().fold(f64::INFINITY, f64::min);
-        for r in 0..m.saturating_sub(1) {
+        for (r, merge_r) in merge.iter_mut().enumerate().take(m.saturating_sub(1)) {
             // Ridge r lies between minima r and r + 1; the ridge before minimum i, walking away
             // from ridge r, is i − 1 on the low side (i < r) and i on the high side (i > r + 1).
             let low = basin_bottom(gaps, ridges, r, (0..=r).rev(), |i| (i < r).then_some(i));
             let high = basin_bottom(gaps, ridges, r, r + 1..m, |i| (i > r + 1).then(|| i - 1));
-            merge[r] = merge_fraction(
+            *merge_r = merge_fraction(
                 level,
                 deepest,
                 low,
@@ -195,7 +195,7 @@ impl GroupLayout {
                     .iter()
                     .copied()
                     .fold(f64::INFINITY, f64::min);
-                if weight < GROUP_WEIGHT_MIN || !(deepest < contact_level) {
+                if weight < GROUP_WEIGHT_MIN || deepest.is_nan() || deepest >= contact_level {
                     continue;
                 }
                 layout.push(Group {

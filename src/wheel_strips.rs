@@ -285,7 +285,7 @@ impl StripSide {
             let (gauge_bound, field_bound) = group_bounds(candidates, ridges, group, scan);
             let field = geometry.crossing(candidates[group.first].lateral, field_bound, level);
             let gauge = geometry.crossing(candidates[group.last].lateral, gauge_bound, level);
-            if !(field > gauge) {
+            if field.is_nan() || gauge.is_nan() || field <= gauge {
                 continue;
             }
             // The plane through the centroid of the group's virtual interpenetration at the

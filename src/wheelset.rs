@@ -785,7 +785,7 @@ fn group_ellipse(
         .map(|c| c.gap)
         .fold(f64::INFINITY, f64::min);
     let depth = dz - deepest;
-    if !(depth > 0.0) {
+    if depth.is_nan() || depth <= 0.0 {
         return Ok(None);
     }
     let (gauge, field) = group_bounds(candidates, ridges, group, scan);
