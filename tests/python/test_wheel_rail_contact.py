@@ -472,7 +472,11 @@ def test_every_normal_model_runs_a_lateral_sweep_in_fmpy(new_wrc, model: int) ->
         for side in ("left", "right"):
             n = slave.get(f"{side}.nPatches")
             assert n >= 1
-            for k in range(1, n + 1):
+            # A patch keeps its output slot while it exists, so the occupied slots need not be
+            # the first n: n of the three carry a patch.
+            occupied = [k for k in range(1, 4) if out[f"{side}.p{k}.Fn"] > 0.0]
+            assert len(occupied) == n, (NORMAL_MODELS[model], y_mm, side)
+            for k in occupied:
                 assert out[f"{side}.p{k}.area"] > 0.0 and out[f"{side}.p{k}.pmax"] > 0.0
             # The load balance holds whatever the model (tolerance: 1e−6 of the load).
             assert out[f"{side}.Fz"] == pytest.approx(-Q_DEFAULT, rel=1e-6)
