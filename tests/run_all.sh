@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test of railcontact (the README's test command; CI runs it through .ci/run):
 #   1. formatting and clippy with warnings as errors;
-#   2. Rust unit and integration tests;
+#   2. Rust unit and integration tests, then the continuity sweeps and random-walk soaks at full
+#      resolution in a release build;
 #   3. packs the FMUs (release build; the Linux library against glibc 2.17 through cargo-zigbuild,
 #      required here rather than used when found) and runs their default experiments through
 #      the C API;
@@ -18,6 +19,8 @@ echo "== cargo clippy"
 cargo clippy --workspace --all-targets -- -D warnings
 echo "== cargo test"
 cargo test --workspace
+echo "== continuity sweeps and random-walk soaks at full resolution (release)"
+cargo test --release --test continuity --test soak
 echo "== fmu-pack (release build against glibc 2.17, pack, default experiments)"
 cargo run --release -p fmu-pack -- --glibc 2.17
 echo "== Python host tests"

@@ -131,6 +131,21 @@ fn soak_short() {
     print(&r, 1);
 }
 
+/// The random walk for every normal model: 50 000 steps each in release builds (`cargo test
+/// --release --test soak`, run by `tests/run_all.sh`), 2 000 in debug builds.
+#[test]
+fn soak_every_normal_model() {
+    let steps = if cfg!(debug_assertions) {
+        2_000
+    } else {
+        50_000
+    };
+    for normal_model in 1..=6 {
+        let r = soak(steps, normal_model, steps / 4);
+        print(&r, normal_model);
+    }
+}
+
 #[test]
 #[ignore = "1 000 000 steps, ~2 min in release: cargo test --release --test soak -- --ignored"]
 fn soak_one_million_steps() {
