@@ -351,6 +351,9 @@ pub struct WheelOnRail {
     rail_heights: (f64, f64),
     /// The fine samples of the last search; those of unfilled coarse intervals are [`UNFILLED`].
     samples: Vec<GapSample>,
+    /// The samples' cubic Hermite interpolant, one piece per sample interval (`pieces[k]` between
+    /// samples k and k + 1; unfilled ones lie at +∞), for [`WheelOnRail::depth_moments`].
+    pieces: Vec<Piece>,
     /// The contact candidates of the last search (see [`WheelOnRail::candidates`]) and the
     /// sample index of each one's minimum.
     candidates: ContactCandidates,
@@ -634,26 +637,73 @@ fn hermite_depth(level: f64, g0: f64, g1: f64, d0: f64, d1: f64) -> [f64; 4] {
     [level - g0, -d0, -c2, -c3]
 }
 
+/// One piece of the samples' cubic Hermite interpolant, H(t) = c0 + c1 t + c2 t² + c3 t³ on
+/// t ∈ [0, 1] between two samples, with bounds of its values and its moments ∫₀¹ tʲ H dt.
+#[derive(Debug, Clone, Copy)]
+struct Piece {
+    lowest: f64,
+    highest: f64,
+    cubic: [f64; 4],
+    whole: [f64; 3],
+}
+
+impl Piece {
+    /// The piece between samples `a` and `b` a step `h` apart; at +∞ where either is unfilled.
+    fn of(a: &GapSample, b: &GapSample, h: f64) -> Self {
+        if !(a.gap.is_finite() && b.gap.is_finite()) {
+            return Self {
+                lowest: f64::INFINITY,
+                highest: f64::INFINITY,
+                cubic: [0.0; 4],
+                whole: [0.0; 3],
+            };
+        }
+        let (d0, d1) = (a.slope * h, b.slope * h);
+        let (lowest, highest) = hermite_bounds(a.gap, b.gap, d0, d1);
+        // hermite_depth at level 0 is −H.
+        let cubic = hermite_depth(0.0, a.gap, b.gap, d0, d1).map(|c| -c);
+        Self {
+            lowest,
+            highest,
+            cubic,
+            whole: cubic_moments(&cubic, 0.0, 1.0),
+        }
+    }
+}
+
+/// Lower and upper bounds of the cubic Hermite interpolant with values `g0`, `g1` and
+/// derivatives `d0`, `d1` (per unit t) on t ∈ [0, 1]: H = chord + t(1 − t)[(d0 − Δ)(1 − t) −
+/// (d1 − Δ)t] with Δ = g1 − g0, t(1 − t) ≤ ¼ and the bracket within ±max|dᵢ − Δ|.
+fn hermite_bounds(g0: f64, g1: f64, d0: f64, d1: f64) -> (f64, f64) {
+    let chord = g1 - g0;
+    let bulge = 0.25 * (d0 - chord).abs().max((d1 - chord).abs());
+    (g0.min(g1) - bulge, g0.max(g1) + bulge)
+}
+
 fn cubic_at(c: &[f64; 4], t: f64) -> f64 {
     c[0] + t * (c[1] + t * (c[2] + t * c[3]))
 }
 
-/// ∫ t^j p(t) dt over [t0, t1] for j = 0, 1, 2, p the cubic `c`.
+/// ∫ t^j p(t) dt over [t0, t1] for j = 0, 1, 2, p the cubic `c`: the antiderivatives
+/// t^{j+1} Σ_i c_i t^i/(i + j + 1) by Horner's rule at both ends.
 fn cubic_moments(c: &[f64; 4], t0: f64, t1: f64) -> [f64; 3] {
-    let mut out = [0.0; 3];
-    for (j, o) in out.iter_mut().enumerate() {
-        // ∫ t^(j+i) c_i dt = c_i (t1^(j+i+1) − t0^(j+i+1)) / (j + i + 1).
-        for (i, ci) in c.iter().enumerate() {
-            let e = (j + i + 1) as i32;
-            *o += ci * (t1.powi(e) - t0.powi(e)) / e as f64;
+    let antiderivative = |t: f64, j: usize| {
+        let k = j as f64;
+        let inner = c[0] / (k + 1.0)
+            + t * (c[1] / (k + 2.0) + t * (c[2] / (k + 3.0) + t * (c[3] / (k + 4.0))));
+        let mut power = t;
+        for _ in 0..j {
+            power *= t;
         }
-    }
-    out
+        power * inner
+    };
+    std::array::from_fn(|j| antiderivative(t1, j) - antiderivative(t0, j))
 }
 
 /// ∫ t^j max(0, p(t)) dt over [t0, t1] (j = 0, 1, 2) for the cubic `c`: the interval is cut
 /// at p's critical points (the roots of p', where p turns), so that p is monotone on each piece
-/// and has at most one root there, found by bisection to 1e−13; the positive parts are
+/// and has at most one root there, found by Newton's method kept in its bracket to 1e−13;
+/// the positive parts are
 /// integrated exactly. No root is missed, so the result is continuous in the coefficients.
 fn positive_moments(c: &[f64; 4], t0: f64, t1: f64) -> [f64; 3] {
     let mut out = [0.0; 3];
@@ -694,17 +744,31 @@ fn positive_moments(c: &[f64; 4], t0: f64, t1: f64) -> [f64; 3] {
             (false, false) => continue,
             (true, true) => (a, b),
             (positive_a, _) => {
-                // One root in (a, b): p is monotone here.
+                // One root in (a, b): p is monotone here. Newton from the bracket's secant
+                // point, kept inside the bracket (bisection where it would leave it).
                 let (mut x0, mut x1) = (a, b);
-                while x1 - x0 > 1e-13 {
-                    let mid = 0.5 * (x0 + x1);
-                    if (cubic_at(c, mid) > 0.0) == positive_a {
-                        x0 = mid;
+                let mut x = a + (b - a) * pa / (pa - pb);
+                for _ in 0..60 {
+                    let v = cubic_at(c, x);
+                    if (v > 0.0) == positive_a {
+                        x0 = x;
                     } else {
-                        x1 = mid;
+                        x1 = x;
+                    }
+                    let slope = c[1] + x * (2.0 * c[2] + 3.0 * c[3] * x);
+                    let newton = x - v / slope;
+                    let next = if newton > x0 && newton < x1 {
+                        newton
+                    } else {
+                        0.5 * (x0 + x1)
+                    };
+                    let moved = (next - x).abs();
+                    x = next;
+                    if moved <= 1e-13 || x1 - x0 <= 1e-13 {
+                        break;
                     }
                 }
-                let root = 0.5 * (x0 + x1);
+                let root = x;
                 if positive_a {
                     (a, root)
                 } else {
@@ -763,6 +827,7 @@ impl WheelOnRail {
             wheel_bounds,
             rail_heights,
             samples: Vec::with_capacity(capacity),
+            pieces: Vec::with_capacity(capacity),
             candidates: ContactCandidates::default(),
             candidate_minima: [0; MAX_CANDIDATES],
             ridges: [None; MAX_CANDIDATES],
@@ -1086,6 +1151,9 @@ impl WheelOnRail {
                 .skip(c.first + 1)
             {
                 *s = self.sample(lo + step * i as f64, &p);
+            }
+            for k in c.first..c.last {
+                self.pieces[k] = Piece::of(&samples[k], &samples[k + 1], step);
             }
             c.filled = true;
         }
@@ -1570,6 +1638,9 @@ impl WheelOnRail {
             });
             first = last;
         }
+        self.pieces.clear();
+        self.pieces
+            .extend(samples.windows(2).map(|w| Piece::of(&w[0], &w[1], step)));
         self.samples = samples;
         self.coarse = coarse;
         self.filled_level = f64::NEG_INFINITY;
@@ -1739,18 +1810,28 @@ impl WheelOnRail {
         let mut sums = [0.0; 3];
         let mut k = (ia as usize).min(last.saturating_sub(1));
         while (k as f64) < ib && k < last {
-            let (a, b) = (&s[k], &s[k + 1]);
-            if a.gap.is_finite() && b.gap.is_finite() {
-                let cubic = hermite_depth(level, a.gap, b.gap, a.slope * h, b.slope * h);
-                let (t0, t1) = ((ia - k as f64).max(0.0), (ib - k as f64).min(1.0));
-                if t1 > t0 {
-                    let m = positive_moments(&cubic, t0, t1);
-                    // Shift from the segment's t to the sample index: t → k + t.
-                    let kf = k as f64;
-                    sums[0] += m[0];
-                    sums[1] += m[1] + kf * m[0];
-                    sums[2] += m[2] + 2.0 * kf * m[1] + kf * kf * m[0];
-                }
+            let piece = &self.pieces[k];
+            let (t0, t1) = ((ia - k as f64).max(0.0), (ib - k as f64).min(1.0));
+            if t1 > t0 && piece.lowest < level {
+                let depth = [
+                    level - piece.cubic[0],
+                    -piece.cubic[1],
+                    -piece.cubic[2],
+                    -piece.cubic[3],
+                ];
+                let m = if piece.highest < level && t0 == 0.0 && t1 == 1.0 {
+                    // Wholly below the level over the whole piece: ∫ tʲ (level − H) dt.
+                    std::array::from_fn(|j| level / (j + 1) as f64 - piece.whole[j])
+                } else if piece.highest < level {
+                    cubic_moments(&depth, t0, t1)
+                } else {
+                    positive_moments(&depth, t0, t1)
+                };
+                // Shift from the piece's t to the sample index: t → k + t.
+                let kf = k as f64;
+                sums[0] += m[0];
+                sums[1] += m[1] + kf * m[0];
+                sums[2] += m[2] + 2.0 * kf * m[1] + kf * kf * m[0];
             }
             k += 1;
         }

@@ -310,6 +310,10 @@ struct Side {
     last_y_rail: [f64; MAX_GROUPS],
     /// The last prescribed-load solution, the next one's starting point.
     warm: Option<WarmStart>,
+    /// The multi-Hertzian patches of the last normal solution: reference point, normal solution
+    /// and weight (`evaluate_side`).
+    ellipses: [(ContactPoint, PatchResult, f64); MAX_GROUPS],
+    n_ellipses: usize,
     /// For each entry of `SideResult::groups` of a strip model, its patch in `strips`.
     strip_of_group: [Option<usize>; MAX_GROUPS],
     /// The patches in the output slots after the last solve: their `y_rail` (the identity
@@ -432,6 +436,8 @@ impl Wheelset {
                 tangential_strips: vec![TangentialStrip::default(); MAX_STRIPS],
                 last_y_rail: [0.0; MAX_GROUPS],
                 warm: None,
+                ellipses: [(ContactPoint::default(), PatchResult::default(), 0.0); MAX_GROUPS],
+                n_ellipses: 0,
                 strip_of_group: [None; MAX_GROUPS],
                 slots: [None; MAX_PATCHES],
             })
@@ -738,7 +744,7 @@ fn evaluate_side(
     let ridges = &ridges[..m.saturating_sub(1)];
     let scan = side.geometry.scan_range();
     let b_floor = ctx.strips.params.b_floor();
-    let mut upward = 0.0;
+    side.n_ellipses = 0;
     for group in layout.groups() {
         let Some((reference, patch)) = group_ellipse(
             &side.geometry,
@@ -753,16 +759,33 @@ fn evaluate_side(
         else {
             continue;
         };
-        upward += add_patch(
-            side,
-            ctx,
-            input,
-            &reference,
-            patch,
-            group.weight,
-            out,
-            tangential,
-        )?;
+        if side.n_ellipses < MAX_GROUPS {
+            side.ellipses[side.n_ellipses] = (reference, patch, group.weight);
+            side.n_ellipses += 1;
+        }
+    }
+    complete_ellipses(side, ctx, input, out, tangential)
+}
+
+/// Writes the multi-Hertzian patches of the side's last normal solution ([`evaluate_side`]) to
+/// `out` (lowering `out.z`), with FASTSIM per patch if `tangential`; returns the vertical force
+/// of the rail on the wheel, upwards positive [N]. The tangential problem at a lowering whose
+/// normal solution is at hand needs no new one.
+fn complete_ellipses(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    out: &mut SideResult,
+    tangential: bool,
+) -> Result<f64, InputError> {
+    *out = SideResult {
+        z: out.z,
+        ..SideResult::default()
+    };
+    let mut upward = 0.0;
+    for k in 0..side.n_ellipses {
+        let (reference, patch, weight) = side.ellipses[k];
+        upward += add_patch(side, ctx, input, &reference, patch, weight, out, tangential)?;
     }
     Ok(upward)
 }
@@ -1472,7 +1495,11 @@ fn hertz_side(
             }
             return Ok(None);
         }
-        evaluate_side(side, ctx, input, balanced.lowering, level, out, true)?;
+        if balanced.evaluated {
+            complete_ellipses(side, ctx, input, out, true)?;
+        } else {
+            evaluate_side(side, ctx, input, balanced.lowering, level, out, true)?;
+        }
         Ok(Some(creep_upward(out)))
     })
 }
