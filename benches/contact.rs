@@ -4,10 +4,10 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 
-use railcontact::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
-use railcontact::hertz::hertz_from_approach;
-use railcontact::patch_tangential::TangentialModel;
-use railcontact::strips::NormalModel;
+use railcontact::normal::hertz::hertz_from_approach;
+use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
+use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::{Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings};
 
 #[path = "../tests/common/mod.rs"]

@@ -13,7 +13,7 @@
 //! model (`hertz`, `linder`, `kik-piotrowski`, `stripes-b`, `stripes-ab`, `analyn`), the number
 //! of solves, and `moving` for the moving pose.
 
-use railcontact::strips::NormalModel;
+use railcontact::normal::NormalModel;
 use railcontact::wheelset::WheelsetResult;
 
 #[path = "../tests/common/mod.rs"]

@@ -24,8 +24,8 @@
 //!   `C = [J(X+a, Y+b) − J(X−a, Y+b) − J(X+a, Y−b) + J(X−a, Y−b)] / (π E*)`, a = dx/2, b = dy/2
 //!   ([`influence_coefficient`]).
 //! * **Modulus.** `e_star` is the crate's contact modulus E* = E/(2(1 − ν²))
-//!   ([`crate::hertz::contact_modulus`]): 1/E* = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂, the combined
-//!   compliance of both bodies. With that E* the Hertz formulas of [`crate::hertz`] are the
+//!   ([`crate::normal::hertz::contact_modulus`]): 1/E* = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂, the combined
+//!   compliance of both bodies. With that E* the Hertz formulas of [`crate::normal::hertz`] are the
 //!   continuum limit of this solver (tested below).
 //! * **Matrix–vector product** u = C * p by the discrete-convolution FFT of Liu, Wang & Liu
 //!   (2000), Wear 243 ("DC-FFT"): the (2nx − 1) × (2ny − 1) coefficient block is wrapped onto a
@@ -241,7 +241,7 @@ pub fn surface_displacement(
 /// Contact for a prescribed rigid approach δ = `approach` [m].
 ///
 /// `gap`: undeformed gap h [m] at the element centres, row-major; finite, or +∞ for elements that
-/// can never touch. `e_star`: contact modulus E* [Pa] as in [`crate::hertz::contact_modulus`].
+/// can never touch. `e_star`: contact modulus E* [Pa] as in [`crate::normal::hertz::contact_modulus`].
 /// `tol`: relative pressure change at which the iteration stops (e.g. 1e−10). If δ does not
 /// exceed the smallest gap the answer is zero pressure with no iteration.
 pub fn solve_for_approach(
@@ -839,7 +839,7 @@ impl Convolver {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::hertz::{contact_modulus, hertz_from_approach, hertz_from_load, HertzPatch};
+    use crate::normal::hertz::{contact_modulus, hertz_from_approach, hertz_from_load, HertzPatch};
 
     fn rel(a: f64, b: f64) -> f64 {
         ((a - b) / b).abs()

@@ -11,28 +11,16 @@
 
 pub mod case_json;
 pub mod error;
-
-pub mod analyn;
-pub mod contact_search;
-pub mod elliptic;
-pub mod fastrip;
-pub mod fastsim;
 pub mod halfspace;
-pub mod hertz;
-pub mod kalker;
-pub mod kik_piotrowski;
-pub mod linder;
-pub mod load_balance;
-pub mod patch_groups;
-pub mod patch_tangential;
+
+// Layers, bottom up: numbers, geometry, normal and tangential contact, the contact point and the
+// wheelset that assemble them, the FMI glue and the models it exports.
+pub mod geometry;
+pub mod material;
+pub mod normal;
+pub mod numeric;
 pub mod point_contact;
-pub mod profile;
-pub mod strip_fastsim;
-pub mod stripes;
-pub mod strips;
-pub mod track;
-pub mod validity;
-pub mod wheel_strips;
+pub mod tangential;
 pub mod wheelset;
 
 pub mod fmi;

@@ -12,32 +12,12 @@
 //! creep coefficients still describe the ellipse shape at N = 0 (a/b depends on A/B only).
 
 use crate::error::{require_non_negative, require_positive, InputError};
-use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimResult, FastsimSettings};
-use crate::hertz::{contact_modulus, hertz_from_load, shear_modulus, HertzPatch};
-use crate::kalker::{creep_coefficients, CreepCoefficients};
-
-/// Elastic and frictional properties of the wheel–rail pair (identical materials).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Material {
-    /// Young's modulus E [Pa].
-    pub youngs_modulus: f64,
-    /// Poisson's ratio ν [-], in [0, 0.5].
-    pub poisson_ratio: f64,
-    /// Coefficient of friction μ [-], > 0.
-    pub friction: f64,
-}
-
-impl Material {
-    /// Checks the ranges; returns the error naming the first bad quantity.
-    pub fn validate(&self) -> Result<(), InputError> {
-        require_positive("E", self.youngs_modulus)?;
-        if !(0.0..=0.5).contains(&self.poisson_ratio) {
-            return Err(InputError::new("nu", self.poisson_ratio, "[0, 0.5]"));
-        }
-        require_positive("mu", self.friction)?;
-        Ok(())
-    }
-}
+use crate::material::Material;
+use crate::normal::hertz::{contact_modulus, hertz_from_load, shear_modulus, HertzPatch};
+use crate::tangential::fastsim::{
+    Creepage, EllipticContact, Fastsim, FastsimResult, FastsimSettings,
+};
+use crate::tangential::kalker::{creep_coefficients, CreepCoefficients};
 
 /// Inputs of one contact-point evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]

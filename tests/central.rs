@@ -14,8 +14,8 @@
 
 mod common;
 
-use railcontact::point_contact::Material;
-use railcontact::strips::NormalModel;
+use railcontact::material::Material;
+use railcontact::normal::NormalModel;
 use railcontact::wheelset::{
     Creepages, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
 };

@@ -364,7 +364,7 @@ fn sweep_prints_a_header_and_one_row_per_shift() {
     assert!(stderr(&o).contains("y = 0.2 is outside the allowed range [-0.05, 0.05] [m]"));
 }
 
-/// An implausible contact state (`railcontact::validity`: a patch's approach above 1 mm) —
+/// An implausible contact state (`railcontact::wheelset::validity`: a patch's approach above 1 mm) —
 /// here the prescribed position z = +50 mm, inside the declared range — exits with 3: the JSON
 /// with finite outputs on stdout (the same numbers as the FMU's model), the warning on stderr
 /// naming the quantity, its value, the limit and the cause. z = +0.5 mm (approach 0.32 mm) is

@@ -12,7 +12,7 @@
 mod common;
 
 use common::builtin_wheelset_with;
-use railcontact::strips::NormalModel;
+use railcontact::normal::NormalModel;
 use railcontact::wheelset::{
     Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, MAX_PATCHES,
 };

@@ -13,8 +13,8 @@
 
 mod common;
 
-use railcontact::fastsim::{Creepage, FastsimSettings};
-use railcontact::strips::NormalModel;
+use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::{Creepage, FastsimSettings};
 use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
 
 /// Tolerance of the issue: 1 % of the converged force.

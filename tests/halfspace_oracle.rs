@@ -15,11 +15,12 @@
 
 mod common;
 
-use railcontact::contact_search::StripPoints;
+use railcontact::geometry::search::StripPoints;
+use railcontact::geometry::strips::StripGeometry;
 use railcontact::halfspace::{solve_for_load, HalfspaceGrid};
-use railcontact::hertz::contact_modulus;
-use railcontact::point_contact::Material;
-use railcontact::strips::{NormalModel, StripGeometry};
+use railcontact::material::Material;
+use railcontact::normal::hertz::contact_modulus;
+use railcontact::normal::NormalModel;
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult};
 
 use common::benchmark_wheelset;
@@ -70,7 +71,8 @@ fn model_and_oracle(ws: &mut Wheelset, y: f64) -> ((f64, f64), (f64, f64)) {
     let summary = dominant.summary();
     // 4 mm beyond the model's patch on each side: the exact patch may be wider.
     let (lo, hi) = (summary.s_min - 4e-3, summary.s_max + 4e-3);
-    let ny = (((hi - lo) / ELEMENT).round() as usize).min(railcontact::strips::MAX_STRIPS);
+    let ny =
+        (((hi - lo) / ELEMENT).round() as usize).min(railcontact::geometry::strips::MAX_STRIPS);
     let mut geom = StripGeometry::default();
     let mut points = StripPoints::default();
     ws.geometry(true).strip_geometry(

@@ -41,8 +41,8 @@ mod common;
 
 use std::sync::OnceLock;
 
-use railcontact::point_contact::Material;
-use railcontact::strips::NormalModel;
+use railcontact::material::Material;
+use railcontact::normal::NormalModel;
 use railcontact::wheelset::{
     Creepages, PatchResult, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
 };

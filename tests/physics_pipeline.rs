@@ -1,11 +1,11 @@
 //! Physics core end to end: curvatures → Hertz (H1–H4) → Kalker (K1) → FASTSIM (F1, F3), on the
 //! CONTACT `fastsim` example (physics.md §2.7 oracle 1 and §4.6).
 
-use railcontact::fastsim::{
+use railcontact::normal::hertz::{contact_modulus, hertz_from_load, shear_modulus};
+use railcontact::tangential::fastsim::{
     Creepage, EllipticContact, Fastsim, FastsimSettings, Flexibility, TractionBound,
 };
-use railcontact::hertz::{contact_modulus, hertz_from_load, shear_modulus};
-use railcontact::kalker::creep_coefficients;
+use railcontact::tangential::kalker::creep_coefficients;
 
 /// G = 82 GPa, ν = 0.28 ⇒ E = 2G(1 + ν) = 209.92 GPa.
 const E: f64 = 209.92e9;

@@ -7,7 +7,9 @@
 
 use std::path::{Path, PathBuf};
 
-use railcontact::profile::{smoothing_length_for_noise, ErrorReason, Profile, ProfileKind};
+use railcontact::geometry::profile::{
+    smoothing_length_for_noise, ErrorReason, Profile, ProfileKind,
+};
 
 const MM: f64 = 1000.0;
 
@@ -379,7 +381,7 @@ fn smoothing_a_noisy_rail_restores_the_crown_curvature() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Plausibility checks (railcontact::profile::checks): files that parse but cannot be right.
+// Plausibility checks (railcontact::geometry::profile::checks): files that parse but cannot be right.
 
 /// Two-column CSV text (mm) of `p`'s points, each mapped by `f` (y, z in mm → y, z in mm).
 fn csv_of(p: &Profile, mut f: impl FnMut(usize, f64, f64) -> (f64, f64)) -> String {
@@ -534,7 +536,7 @@ fn a_wheel_with_its_flange_on_the_field_side_is_refused() {
     assert!(e.to_string().contains("lies on the field side"), "{e}");
     assert!(matches!(
         e.location,
-        railcontact::profile::Location::Point(_)
+        railcontact::geometry::profile::Location::Point(_)
     ));
 }
 

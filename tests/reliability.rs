@@ -271,9 +271,12 @@ fn benchmark(file: &str) -> PathBuf {
 
 /// The benchmark rail as CSV text (mm) with each point mapped by `f` (y, z in mm).
 fn benchmark_rail_csv(f: impl Fn(f64, f64) -> (f64, f64)) -> Vec<u8> {
-    let rail =
-        railcontact::profile::Profile::from_file(&benchmark("MBench_UIC60_v3.prr"), None, 0.0)
-            .expect("the shared benchmark rail");
+    let rail = railcontact::geometry::profile::Profile::from_file(
+        &benchmark("MBench_UIC60_v3.prr"),
+        None,
+        0.0,
+    )
+    .expect("the shared benchmark rail");
     let (y, z) = rail.points();
     let mut text = String::from("y,z\n");
     for (&a, &b) in y.iter().zip(z) {
@@ -311,7 +314,7 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
     let open_block = write(&dir, "open.prr", b"point.begin\n1 2\n3 4\n");
     let nan = write(&dir, "nan.csv", b"y z\n0 0\n1 nan\n2 0\n3 0\n");
     let empty = write(&dir, "empty.prw", b"");
-    // Parse cleanly, but fail the plausibility checks (railcontact::profile::checks).
+    // Parse cleanly, but fail the plausibility checks (railcontact::geometry::profile::checks).
     let benchmark_wheel = std::fs::read_to_string(benchmark("MBench_S1002_v3.prw"))
         .expect("the shared benchmark wheel");
     let unmirrored = write(
@@ -633,7 +636,7 @@ fn tiny_and_large_loads() {
                 }
             }
             // The largest allowed load, 10 MN: the documented status (fmi2Warning: the approach,
-            // 1.7 mm with Hertz, is beyond the 1 mm of `railcontact::validity`), a message
+            // 1.7 mm with Hertz, is beyond the 1 mm of `railcontact::wheelset::validity`), a message
             // naming the load, and finite outputs.
             let s = run.step(&[("Qleft", 1e7), ("Qright", 1e7)]);
             assert_eq!(s, WARNING, "{ctx}: {:?}", run.f.messages());
@@ -649,7 +652,7 @@ fn tiny_and_large_loads() {
 
 /// A prescribed position far into the rail — z = +50 mm, inside the declared range of `z` —
 /// is not answered with fmi2OK: `fmi2DoStep` returns fmi2Warning with finite outputs and a
-/// message naming the quantity, its value, the limit and the cause (`railcontact::validity`:
+/// message naming the quantity, its value, the limit and the cause (`railcontact::wheelset::validity`:
 /// a patch's approach above 1 mm). z = +2 mm (approach ≈ 1.8 mm, Fz ≈ 10 MN with Hertz) warns too;
 /// z = +0.5 mm (approach 0.32 mm, within the limit) and the prescribed loads are OK again right
 /// after: the warning does not stick. The lazy evaluation in `fmi2GetReal` and an absurd start

@@ -10,10 +10,10 @@
 mod common;
 
 use common::{benchmark_wheelset_with, read_csv, shared_dir, shared_file};
-use railcontact::fastsim::Creepage;
-use railcontact::patch_tangential::TangentialModel;
-use railcontact::point_contact::Material;
-use railcontact::strips::NormalModel;
+use railcontact::material::Material;
+use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::Creepage;
+use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

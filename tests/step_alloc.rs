@@ -6,13 +6,13 @@
 mod common;
 
 use fmi_sys::fmi2::*;
-use railcontact::fastsim::{
-    Creepage, EllipticContact, Fastsim, FastsimSettings, Flexibility, TractionBound,
-};
 use railcontact::fmi::export::*;
 use railcontact::models::wheel_rail_contact::INFO;
-use railcontact::patch_tangential::TangentialModel;
-use railcontact::strips::NormalModel;
+use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::{
+    Creepage, EllipticContact, Fastsim, FastsimSettings, Flexibility, TractionBound,
+};
+use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::WheelsetResult;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::ffi::CString;

@@ -10,15 +10,15 @@
 
 mod common;
 
-use railcontact::fastsim::Creepage;
-use railcontact::point_contact::Material;
-use railcontact::strips::NormalModel;
+use railcontact::material::Material;
+use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::Creepage;
 use railcontact::wheelset::{
     Creepages, PatchResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
 };
 
 use common::{benchmark_wheelset_with, read_csv};
-use railcontact::patch_tangential::TangentialModel;
+use railcontact::tangential::patch::TangentialModel;
 
 const Q: f64 = 78_500.0;
 const MU: f64 = 0.3;

@@ -6,10 +6,10 @@
 mod common;
 
 use common::{benchmark_wheelset, builtin_wheelset_with, read_csv, STEEL};
-use railcontact::fastsim::Creepage;
 use railcontact::fmi::variables::Start;
-use railcontact::patch_tangential::TangentialModel;
-use railcontact::strips::NormalModel;
+use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::Creepage;
+use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::{
     Creepages, PatchResult, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
 };

@@ -5,9 +5,9 @@
 mod common;
 
 use common::benchmark_wheelset;
-use railcontact::fastsim::Creepage;
-use railcontact::point_contact::Material;
-use railcontact::strips::NormalModel;
+use railcontact::material::Material;
+use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::Creepage;
 use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
 
 #[test]

@@ -2,7 +2,7 @@
 //! and a profile that is accepted is usable — ascending finite knots and finite z, dz/dy, d²z/dy²
 //! across and beyond its range.
 
-use railcontact::profile::{Profile, ProfileKind};
+use railcontact::geometry::profile::{Profile, ProfileKind};
 
 /// Smoothing lengths the first input byte selects from [m] (0 = interpolate).
 const SMOOTHING: [f64; 4] = [0.0, 1e-4, 1e-3, 1e-2];
@@ -26,7 +26,7 @@ pub fn check(data: &[u8], file_name: &str, kind: Option<ProfileKind>) {
 
 fn check_profile(profile: &Profile) {
     let (y, z) = profile.points();
-    assert!(y.len() >= railcontact::profile::MIN_POINTS);
+    assert!(y.len() >= railcontact::geometry::profile::MIN_POINTS);
     assert!(y.windows(2).all(|w| w[0] < w[1]), "knots not ascending");
     assert!(y.iter().chain(z).all(|v| v.is_finite()));
     let (y0, y1) = profile.y_range();

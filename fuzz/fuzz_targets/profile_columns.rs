@@ -3,7 +3,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use railcontact::profile::ProfileKind;
+use railcontact::geometry::profile::ProfileKind;
 
 #[path = "common.rs"]
 mod common;

@@ -13,7 +13,7 @@
 //!
 //! Exit codes: 0 success, 1 usage / case / profile / value error, 2 step refused (no contact
 //! inside the profiles, or a load the normal model cannot carry), 3 implausible contact state
-//! (outputs printed, but beyond elastic half-space contact: [`railcontact::validity`]).
+//! (outputs printed, but beyond elastic half-space contact: [`railcontact::wheelset::validity`]).
 
 use railcontact::case_json as json;
 #[path = "railcontact/report.rs"]
@@ -21,8 +21,8 @@ mod report;
 
 use railcontact::fmi::model::{Evaluation, InstanceContext, Model, ModelError};
 use railcontact::fmi::variables::{Causality, Values, VarInfo, VarType};
+use railcontact::geometry::profile::{Profile, ProfileKind, BUILTIN_NAMES};
 use railcontact::models::wheel_rail_contact::{self as wrc, generated::var, INFO};
-use railcontact::profile::{Profile, ProfileKind, BUILTIN_NAMES};
 use railcontact::wheelset::{PatchResult, Wheelset, WheelsetResult, MAX_PATCHES};
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -95,7 +95,7 @@ const STRIPS: usize = 21;
 const MAX_GRID: usize = 1000;
 /// Most rows a sweep may have.
 const MAX_ROWS: usize = 100_000;
-/// Exit code of an implausible contact state (outputs printed; [`railcontact::validity`]).
+/// Exit code of an implausible contact state (outputs printed; [`railcontact::wheelset::validity`]).
 const IMPLAUSIBLE: i32 = 3;
 
 /// Why the command failed, with its exit code.
@@ -590,7 +590,7 @@ fn solve(
 }
 
 /// The strips of a non-elliptic patch as the model solved them (strips in contact only).
-fn patch_strips(p: &railcontact::wheel_strips::StripPatch) -> Vec<Strip> {
+fn patch_strips(p: &railcontact::wheelset::strip_side::StripPatch) -> Vec<Strip> {
     (0..p.geom.n)
         .filter(|&i| p.sol.half_length[i] > 0.0)
         .map(|i| Strip {

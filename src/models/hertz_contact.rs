@@ -3,10 +3,11 @@
 //! [`crate::point_contact`].
 
 use super::{fastsim_settings, set_output};
-use crate::fastsim::Creepage;
 use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::Values;
-use crate::point_contact::{Material, PointContact, PointContactInput};
+use crate::material::Material;
+use crate::point_contact::{PointContact, PointContactInput};
+use crate::tangential::fastsim::Creepage;
 
 /// Generated from `modelDescription/HertzContact.json` by `build.rs`.
 pub mod generated {

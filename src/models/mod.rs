@@ -2,9 +2,9 @@
 //! (`modelDescription/<Model>.json` → `build.rs`) and the mapping from variables to the physics
 //! core. One shared library serves all of them; `fmi2Instantiate` selects the model by GUID.
 
-use crate::fastsim::{FastsimSettings, Flexibility, MarchScheme, TractionBound};
 use crate::fmi::model::{ModelError, ModelInfo};
 use crate::fmi::variables::{RealVar, Values};
+use crate::tangential::fastsim::{FastsimSettings, Flexibility, MarchScheme, TractionBound};
 
 pub mod hertz_contact;
 pub mod wheel_rail_contact;

@@ -1,19 +1,19 @@
 //! FMU `WheelRailContact`: one wheelset on straight track, both wheels, from wheelset kinematics
 //! to creep forces and contact-patch summaries. Variables: `modelDescription/WheelRailContact.json`;
-//! physics: [`crate::wheelset`]. A state beyond elastic half-space contact ([`crate::validity`])
+//! physics: [`crate::wheelset`]. A state beyond elastic half-space contact ([`crate::wheelset::validity`])
 //! is answered with its outputs and a warning (`fmi2Warning`).
 
 use super::{fastsim_settings, set_output};
-use crate::fastsim::Creepage;
 use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::{IntegerVar, RealVar, Values};
-use crate::patch_groups::MAX_GROUPS;
-use crate::patch_tangential::TangentialModel;
-use crate::point_contact::Material;
-use crate::profile::{Profile, ProfileKind};
-use crate::strips::NormalModel;
-use crate::track::TrackSetup;
-use crate::validity::validity;
+use crate::geometry::groups::MAX_GROUPS;
+use crate::geometry::profile::{Profile, ProfileKind};
+use crate::geometry::track::TrackSetup;
+use crate::material::Material;
+use crate::normal::NormalModel;
+use crate::tangential::fastsim::Creepage;
+use crate::tangential::patch::TangentialModel;
+use crate::wheelset::validity::validity;
 use crate::wheelset::{
     Creepages, SideResult, Slot, Vertical, WarmStart, Wheelset, WheelsetError, WheelsetInput,
     WheelsetResult, WheelsetSettings, MAX_PATCHES,
@@ -218,7 +218,7 @@ fn load_profile(
     };
     let fail = |e: &dyn std::fmt::Display| ModelError::Error(format!("{variable} = {spec:?}: {e}"));
     let name = spec.trim();
-    let builtin = crate::profile::BUILTIN_NAMES
+    let builtin = crate::geometry::profile::BUILTIN_NAMES
         .iter()
         .any(|b| b.eq_ignore_ascii_case(name));
     if builtin || name.is_empty() || Path::new(name).is_absolute() {

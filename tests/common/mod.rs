@@ -4,10 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
-use railcontact::point_contact::Material;
-use railcontact::profile::{Profile, ProfileKind};
-use railcontact::strips::NormalModel;
-use railcontact::track::TrackSetup;
+use railcontact::geometry::profile::{Profile, ProfileKind};
+use railcontact::geometry::track::TrackSetup;
+use railcontact::material::Material;
+use railcontact::normal::NormalModel;
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetSettings};
 
 /// `$RAILCONTACT_SHARED`, or else `../shared` next to the crate.

@@ -24,8 +24,8 @@ use super::study::{Cell, CreepCurve, NormalRun, SpinRun, StripRow};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use railcontact::patch_tangential::TangentialModel;
-use railcontact::strips::NormalModel;
+use railcontact::normal::NormalModel;
+use railcontact::tangential::patch::TangentialModel;
 
 /// Metres → millimetres.
 const TO_MM: f64 = 1e3;

@@ -10,7 +10,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use railcontact::strips::NormalModel;
+use railcontact::normal::NormalModel;
 use std::path::{Path, PathBuf};
 
 /// Font family every text of the figures uses (registered by [`register_font`]).

@@ -8,15 +8,16 @@
 //! `yRail` (mounted rail frame, positive towards the field side, docs/conventions.md).
 
 use crate::Failure;
-use railcontact::fastsim::Creepage;
 use railcontact::fmi::variables::Values;
-use railcontact::hertz::contact_modulus;
+use railcontact::geometry::profile::{Profile, ProfileKind};
 use railcontact::models::wheel_rail_contact::{self as wrc, generated::var};
-use railcontact::patch_tangential::TangentialModel;
-use railcontact::profile::{Profile, ProfileKind};
-use railcontact::stripes::{StripesAB, StripesB};
-use railcontact::strips::{HertzShapeTable, NormalModel, NormalParams, StripModel};
-use railcontact::wheel_strips::StripPatch;
+use railcontact::normal::hertz::contact_modulus;
+use railcontact::normal::shape::HertzShapeTable;
+use railcontact::normal::stripes::{StripesAB, StripesB};
+use railcontact::normal::{NormalModel, NormalParams, StripModel};
+use railcontact::tangential::fastsim::Creepage;
+use railcontact::tangential::patch::TangentialModel;
+use railcontact::wheelset::strip_side::StripPatch;
 use railcontact::wheelset::{
     PatchResult, SideResult, TractionElement, Wheelset, WheelsetError, WheelsetResult,
 };

@@ -9,9 +9,9 @@ use super::plot::model_label;
 use super::reference::{RefCreep, RefStrip, Reference};
 use super::study::{CreepCurve, NormalRun, Options, SpinRun, Study};
 use crate::Failure;
-use railcontact::fastsim::Creepage;
-use railcontact::patch_tangential::TangentialModel;
-use railcontact::strips::NormalModel;
+use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::Creepage;
+use railcontact::tangential::patch::TangentialModel;
 use std::fmt::Write as _;
 
 /// Reference creep points with max(|ξ|, |η|) below this are skipped (the zero point: both forces

@@ -171,7 +171,7 @@ impl HeightBounds {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::profile::ProfileKind;
+    use crate::geometry::profile::ProfileKind;
 
     /// Brute force: the bounds contain every sampled value of the range, and are tight to the
     /// bin's variation (the dense samples reach within one bin's variation of them).

@@ -57,8 +57,8 @@
 //! rail); a profile whose z points upwards is not recognised as such.
 
 use super::error::ErrorReason;
-use super::spline::CubicSpline;
 use super::ProfileKind;
+use crate::numeric::spline::CubicSpline;
 
 /// Smallest lateral extent of a profile [m]; below, its numbers look like metres read as mm.
 pub const MIN_SPAN_M: f64 = 1e-3;

@@ -67,7 +67,7 @@
 //!   the patch's lateral end. With the cap the strip peak falls like √(1 − ζ²) there. The strip's
 //!   own half-length x_l,j ≤ L is never changed.
 //! * **Several lobes in one geometry:** one virtual ellipse across them (the patch groups cut
-//!   separate contacts into separate patches first, `crate::patch_groups`).
+//!   separate contacts into separate patches first, `crate::geometry::groups`).
 //! * **Unusable strips:** a strip with A ≤ 0 or a non-finite A or f is out of contact (Linder
 //!   needs only f and A; B is not used, so B ≤ 0 is harmless, physics.md §5.10).
 //!
@@ -86,11 +86,11 @@
 
 use std::f64::consts::PI;
 
-use crate::elliptic::complete_elliptic_from_complementary;
-use crate::strips::{
-    first_contact_points, HertzShapeTable, NormalParams, StripGeometry, StripModel, StripSolution,
-    MAX_CONTACT_POINTS, MAX_STRIPS,
-};
+use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::normal::shape::HertzShapeTable;
+use crate::normal::strips::{first_contact_points, StripSolution, MAX_CONTACT_POINTS};
+use crate::normal::{NormalParams, StripModel};
+use crate::numeric::elliptic::complete_elliptic_from_complementary;
 
 /// Linder's constant virtual-penetration factor ε [-] (Linder 1997, as given by the seed,
 /// physics.md §5.3 [E]).
@@ -331,7 +331,7 @@ impl StripModel for Linder {
             points.iter().map(|p| p.2 * p.0).sum(),
             points.iter().map(|p| p.2 * p.1).sum(),
         );
-        let usable = |f: f64| f.is_finite() && f < crate::contact_search::UNREACHED_GAP;
+        let usable = |f: f64| f.is_finite() && f < crate::geometry::search::UNREACHED_GAP;
         let level = [geom.f[0], geom.f[n - 1]]
             .into_iter()
             .filter(|f| usable(*f))
@@ -407,8 +407,8 @@ impl StripModel for Linder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::hertz::{hertz_from_approach, HertzPatch};
-    use crate::strips::PatchSummary;
+    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
+    use crate::normal::strips::PatchSummary;
     use std::sync::OnceLock;
 
     /// Lateral curvature of the Hertz cases [1/m] (flat-tread wheel on a 600 mm crown).

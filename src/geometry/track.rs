@@ -8,7 +8,7 @@
 //! Frames (`docs/conventions.md`): track axes x forward, y to the right, z down. Each side is
 //! solved in its **side frame**: the track frame for the right wheel, mirrored in y for the left
 //! wheel, so that in both the lateral coordinate points towards the field side of that side's
-//! rail. Profiles are in their own frames (`crate::profile`): y towards the field side, z down.
+//! rail. Profiles are in their own frames (`crate::geometry::profile`): y towards the field side, z down.
 //!
 //! A [`MountedRail`] is the rail profile rotated by the inclination and re-referenced so its
 //! origin is the top of the rail *as mounted* (its highest point); `yRail` outputs are in these
@@ -17,7 +17,7 @@
 //! Known limits: both rails level (no cant), straight track, identical set-up on both sides.
 
 use crate::error::{require_positive, InputError};
-use crate::profile::{Profile, ProfileKind};
+use crate::geometry::profile::{Profile, ProfileKind};
 
 /// Track and wheelset dimensions [m, rad].
 #[derive(Debug, Clone, Copy, PartialEq)]

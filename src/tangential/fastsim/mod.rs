@@ -6,7 +6,7 @@
 //! Equations as labelled in physics.md §4:
 //!
 //! * **F1** flexibilities L1 = 8a/(3 C11 G), L2 = 8a/(3 C22 G), L3 = π a √(a/b)/(4 C23 G)
-//!   ([`three_flexibilities`]; C11, C22, C23 from `crate::kalker`);
+//!   ([`three_flexibilities`]; C11, C22, C23 from `crate::tangential::kalker`);
 //! * **F2** single flexibility L = (|ξ|L1 + |η|L2 + c|φ|L3)/√(ξ² + η² + c²φ²), c = √(ab)
 //!   ([`single_flexibility`], option [`Flexibility::Single`]);
 //! * **F3** strip marching from the leading edge x = +a_y to the trailing edge:
@@ -81,7 +81,7 @@
 //! (overflow guard, see `MAX_OVERDRIVE`), which leaves the (fully sliding) result unchanged.
 
 use crate::error::{require_finite, require_non_negative, require_positive, InputError};
-use crate::kalker::{creep_coefficients, CreepCoefficients};
+use crate::tangential::kalker::{creep_coefficients, CreepCoefficients};
 use std::f64::consts::PI;
 
 /// Pressure shape used for the traction bound μ p_n (physics.md §4.3).
@@ -360,7 +360,7 @@ pub const SPIN_OFFSET_FRACTION: f64 = 1.0 / 6.0;
 
 /// Constants of the F3 march along one strip of equal elements (all per step Δx); shared by a
 /// strip at y and its mirror strip at −y (same elements and bound, only the x increment differs:
-/// −φy/L3), and by the strips of non-elliptic patches (`crate::strip_fastsim`).
+/// −φy/L3), and by the strips of non-elliptic patches (`crate::tangential::strip_fastsim`).
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct StripMarch {
     /// Centre x of the first (trailing-most) contact element of the strip [m].

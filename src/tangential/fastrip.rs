@@ -16,7 +16,7 @@
 //!   q_y = μ(p0/a)[λ√(a_y² − x²) − λ'√((a_y−d)² − (x−d)²)];
 //!   in the slip zone |q| = μp with the direction of a FASTSIM pass over the same strip (F3 of
 //!   physics.md §4.2 with three flexibilities L1, L2, L3 of F1, spin evaluated at x + Δx/6 as in
-//!   `crate::fastsim`).
+//!   `crate::tangential::fastsim`).
 //!
 //! With the 3-D Kalker coefficients in FS1 the small-creepage limit is Kalker's linear theory,
 //! Fx = −G ab C11 ξ, Fy = −G ab C22 η − G (ab)^{3/2} C23 φ, analytically (the Carter-type
@@ -72,9 +72,9 @@
 //!    the creepage reference point (test `shifted_strips_are_translation_invariant`).
 //! 5. **Discretisation.** Tractions are evaluated at element centres (like CONTACT), nx equal
 //!    elements per strip. The Hertzian driver [`solve_ellipse`] places ny strips at the element
-//!    centres of `crate::fastsim` across [−b, b] and gives strip j round(nx a_y/a) ≥ 1 elements
+//!    centres of `crate::tangential::fastsim` across [−b, b] and gives strip j round(nx a_y/a) ≥ 1 elements
 //!    over its exact length [−a_y, a_y], i.e. elements of ≈ 2a/nx as on FASTSIM's grid. It uses
-//!    F4-blended flexibilities for the direction pass (CONTACT's choice, `crate::fastsim`).
+//!    F4-blended flexibilities for the direction pass (CONTACT's choice, `crate::tangential::fastsim`).
 //!    CONTACT itself differs in two grid details, both reproduced by the test
 //!    `contact_oracle_on_contacts_grid`: its strip half-length is that of the strip's grid
 //!    elements (n_j Δx/2, not a_y), and its FS1 ellipse is the Kik–Piotrowski equivalent ellipse
@@ -113,11 +113,11 @@
 //! constant μ, no slope reduction (F5). No heap allocation in [`solve_strip`].
 
 use crate::error::{require_finite, require_non_negative, require_positive, InputError};
-use crate::fastsim::{
+use crate::tangential::fastsim::{
     blended_flexibilities, three_flexibilities, Creepage, EllipticContact, MAX_GRID,
     SPIN_OFFSET_FRACTION,
 };
-use crate::kalker::{creep_coefficients, CreepCoefficients};
+use crate::tangential::kalker::{creep_coefficients, CreepCoefficients};
 use std::f64::consts::PI;
 
 /// Dimensionless FaStrip loading of a patch (FS1), from its (equivalent) ellipse.
@@ -267,7 +267,7 @@ enum StripTheory {
 /// is not flipped by rounding.
 const BOUND_TOLERANCE: f64 = 1e-12;
 
-/// Overflow guard of the FASTSIM direction pass (as `MAX_OVERDRIVE` of `crate::fastsim`): if the
+/// Overflow guard of the FASTSIM direction pass (as `MAX_OVERDRIVE` of `crate::tangential::fastsim`): if the
 /// rigid-slip increment per element exceeds the peak bound by more than this factor the creepages
 /// are scaled down together before the pass. A trial 1e100 times the bound points along its
 /// increment to full precision, so slip directions are unchanged, and all intermediates stay far
@@ -381,7 +381,7 @@ fn unit_direction(vx: f64, vy: f64) -> (f64, f64) {
 }
 
 /// Centre of element `i` of `n` on [−1, 1]: −1 + (2i + 1)/n, bitwise antisymmetric
-/// (element n − 1 − i is the exact negative of element i), like `crate::fastsim`'s grid.
+/// (element n − 1 − i is the exact negative of element i), like `crate::tangential::fastsim`'s grid.
 fn normalised_centre(i: usize, n: usize) -> f64 {
     if 2 * i + 1 > n {
         -normalised_centre(n - 1 - i, n)
@@ -411,13 +411,13 @@ fn usable_flexibilities(flex: [f64; 3]) -> bool {
 
 /// Solves one strip with nx equal elements from its leading edge x_c + x_l to its trailing edge
 /// x_c − x_l; writes the element tractions (qx, qy [Pa], on the wheel) and slip flags into the
-/// slices (length nx, index 0 = trailing element, as `crate::fastsim` stores rows) and returns
+/// slices (length nx, index 0 = trailing element, as `crate::tangential::fastsim` stores rows) and returns
 /// the sums.
 ///
 /// `mu`: friction of this strip; `flex` = [L1, L2, L3] FASTSIM flexibilities [m/Pa] for the
 /// slip-zone direction pass; `xi`, `eta` [-], `phi` [1/m]: the creepages that `scales` was built
 /// from (the pass's rigid-slip increments are (ξ/L1 − φy/L3)Δx and (η/L2 + φx/L3)Δx with the spin
-/// at x + Δx/6, as in `crate::fastsim`; φ also shifts η to the strip centre when x_c ≠ 0).
+/// at x + Δx/6, as in `crate::tangential::fastsim`; φ also shifts η to the strip centre when x_c ≠ 0).
 ///
 /// Never NaN and never panics for any numeric input whose forces μ pmax x_l are representable:
 /// a strip without load (pmax ≤ 0, x_l ≤ 0, μ ≤ 0, or any non-finite input) gets zero
@@ -715,7 +715,7 @@ impl FastripResult {
 
 /// FaStrip on a Hertzian ellipse with semi-axes `a` (rolling), `b` [m], normal force
 /// `normal_force` [N], shear modulus `g` [Pa], Poisson ratio `nu`, friction `mu`, creepages
-/// `xi`, `eta` [-], `phi` [1/m]; `ny` strips at the element centres of `crate::fastsim` across
+/// `xi`, `eta` [-], `phi` [1/m]; `ny` strips at the element centres of `crate::tangential::fastsim` across
 /// [−b, b], strip j with round(nx a_y/a) ≥ 1 equal elements over [−a_y, a_y] (module header,
 /// choice 5). Allocates three buffers of `nx` elements.
 ///

@@ -1,8 +1,8 @@
 //! One wheelset on straight track: contact search on both wheels, multi-Hertzian normal contact,
 //! creepages from the wheelset kinematics, FASTSIM per patch, and the forces in track axes.
 //!
-//! Per wheel (in its side frame, see [`crate::track`]):
-//! 1. rigid contact search ([`crate::contact_search`]) gives the gap function and its minima;
+//! Per wheel (in its side frame, see [`crate::geometry::track`]):
+//! 1. rigid contact search ([`crate::geometry::search`]) gives the gap function and its minima;
 //! 2. the wheel's vertical position is either prescribed (`z`) or found so that the vertical force
 //!    of the rail on the wheel balances the prescribed wheel load Q — including the vertical
 //!    components of the creep forces, which matter in flange contact (N cos γ + σ Fy sin γ = Q);
@@ -25,21 +25,25 @@
 //! independently at the given roll (as CONTACT does with per-wheel prescribed loads); straight
 //! track; the wheelset's angular velocity has no roll-rate term.
 
-use crate::contact_search::{ContactPoint, SearchError, SidePose, WheelOnRail};
+pub mod balance;
+pub mod strip_side;
+pub mod validity;
+
 use crate::error::InputError;
-use crate::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
-use crate::hertz::{contact_modulus, shear_modulus};
-use crate::load_balance::balance_hertzian;
-use crate::patch_groups::MAX_GROUPS;
-use crate::patch_tangential::{strip_flexibilities, EquivalentEllipse, TangentialModel};
-use crate::point_contact::Material;
-use crate::profile::Profile;
-use crate::strip_fastsim::{StripFastsim, TangentialStrip};
-use crate::strips::{
-    HertzShapeTable, NormalModel, NormalParams, DEFAULT_B_SMOOTHING, DEFAULT_STRIPS, MAX_STRIPS,
-};
-use crate::track::{GeometryError, TrackSetup};
-use crate::wheel_strips::{group_bounds, groups_at, StripPatch, StripSettings, StripSide};
+use crate::geometry::groups::MAX_GROUPS;
+use crate::geometry::profile::Profile;
+use crate::geometry::search::{ContactPoint, SearchError, SidePose, WheelOnRail};
+use crate::geometry::strips::MAX_STRIPS;
+use crate::geometry::track::{GeometryError, TrackSetup};
+use crate::material::Material;
+use crate::normal::hertz::{contact_modulus, shear_modulus};
+use crate::normal::shape::HertzShapeTable;
+use crate::normal::{NormalModel, NormalParams, DEFAULT_B_SMOOTHING, DEFAULT_STRIPS};
+use crate::tangential::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
+use crate::tangential::patch::{strip_flexibilities, EquivalentEllipse, TangentialModel};
+use crate::tangential::strip_fastsim::{StripFastsim, TangentialStrip};
+use crate::wheelset::balance::balance_hertzian;
+use crate::wheelset::strip_side::{group_bounds, groups_at, StripPatch, StripSettings, StripSide};
 
 /// Patches reported per wheel.
 pub const MAX_PATCHES: usize = 3;
@@ -102,8 +106,8 @@ impl WheelsetSettings {
             setup,
             material,
             fastsim: FastsimSettings::online(),
-            scan_step: crate::contact_search::DEFAULT_SCAN_STEP,
-            b_min: crate::contact_search::DEFAULT_B_MIN,
+            scan_step: crate::geometry::search::DEFAULT_SCAN_STEP,
+            b_min: crate::geometry::search::DEFAULT_B_MIN,
             normal_model: NormalModel::Hertz,
             strips: DEFAULT_STRIPS,
             b_smoothing: DEFAULT_B_SMOOTHING,
@@ -181,7 +185,7 @@ pub struct PatchResult {
     pub curv_a: f64,
     pub curv_b: f64,
     /// Weight of the patch in the wheel's forces (1 but where two contact descriptions are
-    /// blended, `crate::patch_groups`); `fn_`, `fx`, `fy`, `mz`, `area` and
+    /// blended, `crate::geometry::groups`); `fn_`, `fx`, `fy`, `mz`, `area` and
     /// `frictional_power` include it [-].
     pub weight: f64,
 }
@@ -466,9 +470,9 @@ impl Wheelset {
     }
 
     /// The strip patches of one wheel after the last solve (empty for Hertz): one per patch
-    /// group, with its weight ([`crate::patch_groups`]). Those whose
-    /// [`crate::strips::PatchSummary::in_contact`] holds carry load.
-    pub fn strip_patches(&self, right: bool) -> &[crate::wheel_strips::StripPatch] {
+    /// group, with its weight ([`crate::geometry::groups`]). Those whose
+    /// [`crate::normal::strips::PatchSummary::in_contact`] holds carry load.
+    pub fn strip_patches(&self, right: bool) -> &[crate::wheelset::strip_side::StripPatch] {
         let side = if right { &self.right } else { &self.left };
         side.strips.as_ref().map_or(&[], |s| s.patches())
     }
@@ -524,7 +528,7 @@ impl Wheelset {
         &self,
         right: bool,
         slot: usize,
-    ) -> Option<&crate::wheel_strips::StripPatch> {
+    ) -> Option<&crate::wheelset::strip_side::StripPatch> {
         let side = if right { &self.right } else { &self.left };
         let group = side.slots.get(slot).copied().flatten()?.group;
         side.strips
@@ -696,7 +700,7 @@ const VIRTUAL_FRACTION: f64 = 0.8;
 /// Evaluates one wheel lowered by `dz` (with FASTSIM per patch if `tangential`, else normal
 /// forces only); returns the vertical force of the rail on the wheel, upwards positive [N].
 ///
-/// Multi-Hertzian: every patch group at the level dz ([`crate::patch_groups`]) is one Hertz
+/// Multi-Hertzian: every patch group at the level dz ([`crate::geometry::groups`]) is one Hertz
 /// patch, described by integrals of its interpenetration between the ridges that separate it
 /// from the other groups — never by the position of one minimum, which in a conformal contact
 /// is round-off (the gap is flat to 0.1 µm over millimetres where S1002's R13 flange root meets
@@ -706,7 +710,7 @@ const VIRTUAL_FRACTION: f64 = 0.8;
 /// carries nothing.
 /// * depth δ_v = dz − g_min (vertical), g_min the group's deepest gap;
 /// * the interpenetration above the fraction ε = [`VIRTUAL_FRACTION`] of that depth, d(w) =
-///   max(0, g_min + ε δ_v − gap(w)) ([`crate::contact_search::WheelOnRail::depth_moments`]):
+///   max(0, g_min + ε δ_v − gap(w)) ([`crate::geometry::search::WheelOnRail::depth_moments`]):
 ///   its d-weighted mean lateral is the patch's reference point — the force centroid of a
 ///   virtual region (as Piotrowski & Kik 2008: the patch lies inside the virtual region, and a
 ///   strip's load grows with its virtual penetration, as it does for a Hertz ellipse); on a
@@ -736,10 +740,10 @@ fn evaluate_side(
         &mut side.geometry,
         merge_level,
         dz,
-        crate::patch_groups::SHOULDER_FRACTION,
+        crate::geometry::groups::SHOULDER_FRACTION,
     );
     let candidates = &candidates[..m];
-    let mut ridges = [None; crate::contact_search::MAX_CANDIDATES];
+    let mut ridges = [None; crate::geometry::search::MAX_CANDIDATES];
     ridges[..m.saturating_sub(1)].copy_from_slice(side.geometry.ridges());
     let ridges = &ridges[..m.saturating_sub(1)];
     let scan = side.geometry.scan_range();
@@ -797,8 +801,8 @@ fn group_ellipse(
     geometry: &WheelOnRail,
     ctx: &Context,
     candidates: &[ContactPoint],
-    ridges: &[Option<crate::contact_search::Ridge>],
-    group: &crate::patch_groups::Group,
+    ridges: &[Option<crate::geometry::search::Ridge>],
+    group: &crate::geometry::groups::Group,
     scan: (f64, f64),
     dz: f64,
     b_floor: f64,
@@ -1021,7 +1025,7 @@ fn assign_slots(slots: &mut [Option<Slot>; MAX_PATCHES], out: &mut SideResult) {
 
 /// Writes the outputs of the strip patches of `side` (solved at lowering `dz`): patch figures
 /// from the strips, reference point at the patch's force centroid (interpolated between strips),
-/// tangential forces by the strip solvers of [`crate::strip_fastsim`] (planar or non-planar,
+/// tangential forces by the strip solvers of [`crate::tangential::strip_fastsim`] (planar or non-planar,
 /// flexibilities per [`TangentialModel`]). Returns the upward force on the wheel [N].
 fn evaluate_strips(
     side: &mut Side,
@@ -1143,7 +1147,7 @@ fn strip_patch_result(
     ctx: &Context,
     input: &WheelsetInput,
     patch: &StripPatch,
-    summary: &crate::strips::PatchSummary,
+    summary: &crate::normal::strips::PatchSummary,
     dz: f64,
     slot: usize,
 ) -> Result<(PatchResult, [f64; 3]), InputError> {
@@ -1505,7 +1509,7 @@ fn hertz_side(
 }
 
 /// The interpenetration level at which a wheel's multi-Hertzian patch groups are decided under
-/// the wheel load `load` [N] ([`crate::patch_groups`]): first touch plus the approach of a Hertz
+/// the wheel load `load` [N] ([`crate::geometry::groups`]): first touch plus the approach of a Hertz
 /// contact of radius `radius` (the nominal wheel radius) on a plane under that load,
 /// δ = (9 Q²/(16 E*² R))^{1/3} (83 µm for 78.5 kN on a 0.46 m steel wheel, about a tread
 /// contact's). It does not depend on the lowering being iterated, so that the wheel's vertical

@@ -38,7 +38,7 @@
 //! Known limits: the blend is a model of the transition, not a solution of it: in a transition
 //! region the forces are a weighted mean of two descriptions that each hold only at its ends.
 
-use crate::contact_search::MAX_CANDIDATES;
+use crate::geometry::search::MAX_CANDIDATES;
 
 /// Most groups kept per wheel (three separate patches with one transition, or a chain of three
 /// minima in transition: at most six runs carry weight).

@@ -15,7 +15,7 @@
 //! * **H6** shape factors ε_x = A a²/δ, ε_y = B b²/δ, ε_x + ε_y = 1;
 //! * **H7** m, n, r coefficients (`mnr_coefficients`).
 //!
-//! The elliptic integrals come from the AGM (`crate::elliptic`, physics.md §2.6), with K − E free
+//! The elliptic integrals come from the AGM (`crate::numeric::elliptic`, physics.md §2.6), with K − E free
 //! of cancellation so that H1 and H6 stay accurate near the circle.
 //!
 //! Conventions: A is the relative curvature in the rolling direction x, B the lateral one [1/m];
@@ -26,8 +26,8 @@
 //! physics.md §5.10 handles it elsewhere). H1 is solved for B'/A' from 1 up to about 1e12 (g down to
 //! ~1e−7); the acceptance range is 1…1e6. Half-space, frictionless, small-strain theory.
 
-use crate::elliptic::{complete_elliptic_from_complementary, CompleteElliptic};
 use crate::error::{require_non_negative, require_positive, InputError};
+use crate::numeric::elliptic::{complete_elliptic_from_complementary, CompleteElliptic};
 use std::f64::consts::PI;
 
 /// Contact modulus E* = E/(2(1 − ν²)) [Pa] of two bodies with the same Young's modulus `e` [Pa] and

@@ -44,9 +44,10 @@
 //! `prepare` and `solve` use fixed arrays of [`MAX_STRIPS`]: no allocation, no panic, no NaN for
 //! any finite geometry and any δ (δ ≤ 0 or NaN: no contact).
 
-use crate::strips::{
-    HertzShapeTable, NormalParams, StripGeometry, StripModel, StripSolution, MAX_STRIPS,
-};
+use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::normal::shape::HertzShapeTable;
+use crate::normal::strips::StripSolution;
+use crate::normal::{NormalParams, StripModel};
 
 /// ANALYN (A1, physics.md §5.8). See the module documentation.
 #[derive(Debug, Clone)]
@@ -167,8 +168,8 @@ impl StripModel for Analyn {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::hertz::{hertz_from_approach, HertzPatch};
-    use crate::strips::PatchSummary;
+    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
+    use crate::normal::strips::PatchSummary;
     use std::sync::OnceLock;
 
     /// Per-strip tolerance against exact Hertz, normalised by a² or p0: the table's 1e−7

@@ -91,9 +91,10 @@
 //! `prepare` and `solve` use fixed arrays of [`MAX_STRIPS`] inside the structs: no allocation, no
 //! panic, and no NaN for any finite geometry and any δ (δ ≤ 0 or NaN: no contact).
 
-use crate::strips::{
-    HertzShape, HertzShapeTable, NormalParams, StripGeometry, StripModel, StripSolution, MAX_STRIPS,
-};
+use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::normal::shape::{HertzShape, HertzShapeTable};
+use crate::normal::strips::StripSolution;
+use crate::normal::{NormalParams, StripModel};
 
 /// Approximate Hertz split ε̃(A/B) = 1/(1 + (A/B)^{1/3}) of the Approach-4 reconstruction
 /// (physics.md §5.7, from a/b ≈ (B/A)^{2/3}); exact (½) at A = B. Curvatures A, B > 0 [1/m].
@@ -485,8 +486,8 @@ impl StripModel for StripesAB {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::hertz::{hertz_from_approach, HertzPatch};
-    use crate::strips::PatchSummary;
+    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
+    use crate::normal::strips::PatchSummary;
     use std::sync::OnceLock;
 
     /// Tolerance of per-strip comparisons with exact Hertz, normalised by a² or p0: the table's

@@ -1,6 +1,6 @@
 //! Rigid contact search between one wheel and its rail for a wheelset pose.
 //!
-//! Method (physics.md §1, §5.1): in the side frame (see [`crate::track`]) the wheelset pose is a
+//! Method (physics.md §1, §5.1): in the side frame (see [`crate::geometry::track`]) the wheelset pose is a
 //! lateral shift, a yaw angle ψ and a roll angle θ. For each lateral coordinate W across the rail
 //! (measured from the wheelset centre along the wheelset's own lateral axis):
 //!
@@ -17,7 +17,7 @@
 //!   less than [`MIN_PROMINENCE`] are one point.
 //! * the grid is sampled **lazily**: every `COARSE_STRIDE`-th sample first; between two coarse
 //!   samples a lower bound of the gap (from exact per-bin bounds of both profiles' heights and
-//!   slopes, [`crate::profile::bounds`]) decides whether the fine samples there are needed for
+//!   slopes, [`crate::geometry::profile::bounds`]) decides whether the fine samples there are needed for
 //!   the level asked for (the deepest point at the search; each region's lowering later). Below
 //!   the filled level the samples, regions and candidates are those of the full grid (unit test
 //!   `lazy_scan_equals_the_full_scan_below_the_filled_level`); above it nothing is computed.
@@ -33,10 +33,10 @@
 //! Known limits: the gap is measured vertically in the wheelset frame (δ_normal = δ_vertical·cos γ);
 //! B ignores the small change of lateral curvature by yaw; straight track.
 
-use crate::profile::bounds::HeightBounds;
-use crate::profile::Profile;
-use crate::strips::{StripGeometry, MAX_STRIPS};
-use crate::track::{GeometryError, MountedRail, TrackSetup};
+use crate::geometry::profile::bounds::HeightBounds;
+use crate::geometry::profile::Profile;
+use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::geometry::track::{GeometryError, MountedRail, TrackSetup};
 
 /// Largest number of separate contact candidates kept per wheel.
 pub const MAX_CANDIDATES: usize = 8;
@@ -44,7 +44,7 @@ pub const MAX_CANDIDATES: usize = 8;
 /// Local minima whose separating ridge is lower than this above the shallower minimum are one
 /// candidate [m]: 1 nm, round-off of the gap's evaluation. Shallow ripples above it stay separate
 /// candidates; where the interpenetration submerges their ridges, the patch groups blend them
-/// continuously ([`crate::patch_groups`]), where merging them here would make the candidate jump
+/// continuously ([`crate::geometry::groups`]), where merging them here would make the candidate jump
 /// between the ripple's minima as their depths cross.
 pub const MIN_PROMINENCE: f64 = 1e-9;
 
@@ -64,8 +64,9 @@ pub const FLANGE_TIP_MARGIN: f64 = 2e-3;
 /// profile, not against the rail).
 pub const FLANGE_CLIMB_ANGLE: f64 = 0.45;
 
-/// Fraction of a region's depth at which its reference point is taken (see `regions`).
-const VIRTUAL_FRACTION: f64 = crate::kik_piotrowski::KP_EPSILON;
+/// Fraction of a region's depth at which its reference point is taken (see `regions`): Kik and
+/// Piotrowski's virtual-penetration factor ε (`crate::normal::kik_piotrowski::KP_EPSILON`).
+const VIRTUAL_FRACTION: f64 = 0.55;
 
 /// Iteration limit of the yawed wheel's lowest-point search (Newton converges in 2–3 steps from
 /// the axle-plane guess at the yaw angles of running; bisection halves the 0.46 m bracket to
@@ -796,7 +797,7 @@ impl WheelOnRail {
     ) -> Result<Self, GeometryError> {
         crate::error::require_positive("scanStep", scan_step)?;
         crate::error::require_positive("bMin", b_min)?;
-        if wheel.kind() != crate::profile::ProfileKind::Wheel {
+        if wheel.kind() != crate::geometry::profile::ProfileKind::Wheel {
             return Err(GeometryError::Profile(format!(
                 "{} is not a wheel profile",
                 wheel.name()

@@ -39,7 +39,7 @@
 //! element steps Δx/2 from the strip's edge and the spin term sits at each step's midpoint
 //! (second order); `Contact` takes full steps with the spin term at Δx/6. Per strip the sums give F_x,j = Σ p_x Δx_j Δs_j, F_y,j likewise and
 //! Σ x p_y Δx_j Δs_j; the patch's spin moment about its reference point (planar lever arms) is
-//! M_z = Σ_j (Σ x p_y ΔA − y_j F_x,j). Frictional power: as `crate::fastsim` (slip displacement
+//! M_z = Σ_j (Σ x p_y ΔA − y_j F_x,j). Frictional power: as `crate::tangential::fastsim` (slip displacement
 //! S = (L1 (p − p*)_x, L2 (p − p*)_y), p* the adhesion trial, power V Σ |p| |S| Δs_j ≥ 0).
 //!
 //! # Choices
@@ -47,8 +47,8 @@
 //! * A fixed element count per strip (Kalker 1982's reported choice, physics.md §4.2) rather than
 //!   a uniform Δx over the patch: every strip — also the short ones at the patch ends — is
 //!   resolved equally, the cost is `nx` × strips in contact, and the first-order overshoot of
-//!   full adhesion (≈ 1/nx, `crate::fastsim` header) is the same on every strip.
-//! * The bound is sampled at element centres, like `crate::fastsim`.
+//!   full adhesion (≈ 1/nx, `crate::tangential::fastsim` header) is the same on every strip.
+//! * The bound is sampled at element centres, like `crate::tangential::fastsim`.
 //!
 //! # Known limits
 //!
@@ -58,11 +58,11 @@
 //! sized in [`StripFastsim::new`].
 
 use crate::error::InputError;
-use crate::fastrip::semi_ellipse_midpoint_ratio;
-use crate::fastsim::{
+use crate::geometry::strips::MAX_STRIPS;
+use crate::tangential::fastrip::semi_ellipse_midpoint_ratio;
+use crate::tangential::fastsim::{
     strip_outs, Creepage, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP,
 };
-use crate::strips::MAX_STRIPS;
 
 /// Largest element count per strip (the FMU's `nx` range).
 pub const MAX_ELEMENTS: usize = 1000;
@@ -281,7 +281,7 @@ impl StripFastsim {
         self.summarize(strips, speed)
     }
 
-    /// FaStrip (`crate::fastrip`, Sichani et al. 2016) on the same strips: the strip-theory
+    /// FaStrip (`crate::tangential::fastrip`, Sichani et al. 2016) on the same strips: the strip-theory
     /// tractions in each strip's adhesion zone, μ p in the FASTSIM pass's direction in its slip
     /// zone, with FS1's dimensionless creepages from the patch's equivalent ellipse `equivalent`
     /// (its Kalker coefficients and peak pressure 3N/(2π a_e b_e)) and each strip's own creepages
@@ -290,10 +290,10 @@ impl StripFastsim {
     pub fn solve_fastrip(
         &mut self,
         strips: &[TangentialStrip],
-        equivalent: &crate::patch_tangential::EquivalentEllipse,
+        equivalent: &crate::tangential::patch::EquivalentEllipse,
         speed: f64,
     ) -> StripFastsimResult {
-        use crate::fastrip::{
+        use crate::tangential::fastrip::{
             solve_strip_with_pressure, FastripScales, FastripStrip, StripPressure,
         };
         let nx = self.nx;
@@ -501,8 +501,10 @@ fn element_centre(i: usize, n: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fastsim::{three_flexibilities, EllipticContact, Fastsim, FastsimSettings};
-    use crate::kalker::creep_coefficients;
+    use crate::tangential::fastsim::{
+        three_flexibilities, EllipticContact, Fastsim, FastsimSettings,
+    };
+    use crate::tangential::kalker::creep_coefficients;
     use std::f64::consts::PI;
 
     /// CONTACT's `fastsim` example ellipse (physics.md §4.6) in SI units.
@@ -545,7 +547,7 @@ mod tests {
     #[test]
     fn linear_limit_is_kalkers() {
         // Tiny creepage: full adhesion. FASTSIM's full-adhesion force exceeds the linear theory by
-        // ≈ 1/nx (the leading element's full step, crate::fastsim header): +0.5 % at nx = 200;
+        // ≈ 1/nx (the leading element's full step, crate::tangential::fastsim header): +0.5 % at nx = 200;
         // the strip sum of a b C11 ∝ Σ (1 − y²/b²) Δy errs by O((Δy/b)²) ≈ 1e−4. Allow 1 %.
         let c = creep_coefficients(A, B, NU).unwrap();
         let xi = 1e-7;
@@ -636,7 +638,7 @@ mod tests {
     fn hertz_strips_agree_with_the_elliptic_fastsim() {
         // The same ellipse, flexibilities and bound; only the element layout differs (fixed nx
         // per strip here, a uniform Δx there), a first-order difference: at 200 × 200 both are
-        // within ~0.5 % of their converged value (crate::fastsim header: Fy/(μN) −0.5979 at 160²,
+        // within ~0.5 % of their converged value (crate::tangential::fastsim header: Fy/(μN) −0.5979 at 160²,
         // −0.5968 at 400²). Allow 1 % of μN on the forces and 2 % on Mz (its converged value
         // still moves 1 % between 160² and 400²).
         let k = Creepage {

@@ -3,12 +3,12 @@
 //!
 //! For a wheel lowered by dz from its nominal height:
 //! 1. **Layout** at the level L = touch + [`LAYOUT_FACTOR`] × (the multi-Hertzian approach): the
-//!    patch groups of the gap's minima at L ([`crate::patch_groups`]) each become a patch. Its
+//!    patch groups of the gap's minima at L ([`crate::geometry::groups`]) each become a patch. Its
 //!    contact plane passes through the share-weighted mean of its members' first-contact points,
 //!    inclined by their shares' mean angle (a single minimum's tangent plane; blended, so that
 //!    the plane moves continuously where two minima exchange the role). Its strips cover the
 //!    interpenetration at L around its members, up to the ridges that separate it from the
-//!    other groups ([`crate::contact_search::WheelOnRail::crossing`]). The strips are fixed for
+//!    other groups ([`crate::geometry::search::WheelOnRail::crossing`]). The strips are fixed for
 //!    the whole load iteration of the step, and every quantity of the layout is a continuous
 //!    function of the pose and of the multi-Hertzian approach.
 //! 2. the patch's normal approach is δ_p = dz cos γ_p − g_p (g_p its normal gap at nominal
@@ -22,13 +22,13 @@
 //! [`StripPoints`] for the tangential problem); a patch that would extend beyond its strips'
 //! range (a model much softer than Hertz) is cut at the range's end.
 
-use crate::contact_search::{ContactPlane, ContactPoint, Ridge, StripPoints, WheelOnRail};
-use crate::load_balance::balance;
-use crate::patch_groups::{Group, GroupLayout, MAX_GROUPS};
-use crate::strips::{
-    HertzShapeTable, NormalModel, NormalParams, PatchSummary, StripGeometry, StripModel,
-    StripSolution,
-};
+use crate::geometry::groups::{Group, GroupLayout, MAX_GROUPS};
+use crate::geometry::search::{ContactPlane, ContactPoint, Ridge, StripPoints, WheelOnRail};
+use crate::geometry::strips::StripGeometry;
+use crate::normal::shape::HertzShapeTable;
+use crate::normal::strips::{PatchSummary, StripSolution};
+use crate::normal::{NormalModel, NormalParams, StripModel};
+use crate::wheelset::balance::balance;
 
 /// One non-elliptic patch: its plane, strips, model state, solution and weight.
 pub struct StripPatch {
@@ -36,7 +36,7 @@ pub struct StripPatch {
     pub geom: StripGeometry,
     pub points: StripPoints,
     pub sol: StripSolution,
-    /// Weight of the patch in the wheel's forces ([`crate::patch_groups`]) [-].
+    /// Weight of the patch in the wheel's forces ([`crate::geometry::groups`]) [-].
     pub weight: f64,
     /// The smallest normal gap of the strips relative to the plane's origin [m]: the strips'
     /// `geom.f` are measured from it (their minimum is zero), and the patch's approach is the
@@ -85,11 +85,11 @@ impl StripPatch {
         let offset = self.geom.f[..n]
             .iter()
             .copied()
-            .filter(|f| *f < crate::contact_search::UNREACHED_GAP)
+            .filter(|f| *f < crate::geometry::search::UNREACHED_GAP)
             .fold(f64::INFINITY, f64::min);
         self.gap_offset = if offset.is_finite() { offset } else { 0.0 };
         for f in &mut self.geom.f[..n] {
-            if *f < crate::contact_search::UNREACHED_GAP {
+            if *f < crate::geometry::search::UNREACHED_GAP {
                 *f -= self.gap_offset;
             }
         }
@@ -171,7 +171,7 @@ pub const LAYOUT_FACTOR: f64 = 1.3;
 
 /// Fraction of a group's depth at the layout level whose interpenetration's centroid is the
 /// origin of its contact plane: Kik–Piotrowski's ε, as the multi-Hertzian reference point.
-const ANCHOR_FRACTION: f64 = crate::kik_piotrowski::KP_EPSILON;
+const ANCHOR_FRACTION: f64 = crate::normal::kik_piotrowski::KP_EPSILON;
 
 /// The lateral bounds (gauge side, field side; wheelset frame) of `group` among the candidates
 /// `candidates` (field side first) with `ridges` between them: the ridges to the neighbouring
@@ -199,7 +199,7 @@ pub fn group_bounds(
 
 /// The patch groups of the wheel's current search merged at the level `level` and in contact
 /// at the lowering `contact_level` [m], shoulders merging with `shoulder` (see
-/// [`crate::patch_groups`]), with the candidates they refer to.
+/// [`crate::geometry::groups`]), with the candidates they refer to.
 pub fn groups_at(
     geometry: &mut WheelOnRail,
     level: f64,
@@ -207,16 +207,16 @@ pub fn groups_at(
     shoulder: f64,
 ) -> (
     GroupLayout,
-    [ContactPoint; crate::contact_search::MAX_CANDIDATES],
+    [ContactPoint; crate::geometry::search::MAX_CANDIDATES],
     usize,
 ) {
     geometry.fill_to_level(level.max(contact_level));
     let candidates = geometry.candidates().as_slice();
     let m = candidates.len();
-    let mut points = [ContactPoint::default(); crate::contact_search::MAX_CANDIDATES];
+    let mut points = [ContactPoint::default(); crate::geometry::search::MAX_CANDIDATES];
     points[..m].copy_from_slice(candidates);
-    let mut gaps = [0.0; crate::contact_search::MAX_CANDIDATES];
-    let mut ridge_gaps = [None; crate::contact_search::MAX_CANDIDATES];
+    let mut gaps = [0.0; crate::geometry::search::MAX_CANDIDATES];
+    let mut ridge_gaps = [None; crate::geometry::search::MAX_CANDIDATES];
     for k in 0..m {
         gaps[k] = points[k].gap;
     }
@@ -276,7 +276,7 @@ impl StripSide {
     ) {
         let (layout, candidates, m) = groups_at(geometry, level, level, 0.0);
         let candidates = &candidates[..m];
-        let mut ridges = [None; crate::contact_search::MAX_CANDIDATES];
+        let mut ridges = [None; crate::geometry::search::MAX_CANDIDATES];
         ridges[..m.saturating_sub(1)].copy_from_slice(geometry.ridges());
         let ridges = &ridges[..m.saturating_sub(1)];
         let scan = geometry.scan_range();

@@ -28,7 +28,7 @@
 //!   half-spaces, (1 − ν1²)/(πE1) + (1 − ν2²)/(πE2) = 1/(πE*). Verified: with ε = 0.5 a circle
 //!   gives Hertz's N, a and p0 (tested, below).
 //! * **KP6** I(y) = ∫_{−c}^{c} √(c² − x²)/√(x² + y²) dx = 2√(c² + y²) [K(k) − E(k)],
-//!   k² = c²/(c² + y²), c = x_l,i ([`inner_integral`]; K − E from the AGM, `crate::elliptic`).
+//!   k² = c²/(c² + y²), c = x_l,i ([`inner_integral`]; K − E from the AGM, `crate::numeric::elliptic`).
 //! * **KP7** explicit in δ; a prescribed load needs V2 (the caller's).
 //! * **KP8** (optional, `NormalParams::kp_shape_correction`) area-preserving shape correction
 //!   x → s x, (y − y_c) → (y − y_c)/s, s = √(ρ_H/ρ_v); choices below.
@@ -111,11 +111,11 @@
 
 use std::f64::consts::{E, FRAC_PI_2, PI};
 
-use crate::elliptic::complete_elliptic_from_complementary;
-use crate::strips::{
-    first_contact_points, HertzShapeTable, NormalParams, StripGeometry, StripModel, StripSolution,
-    MAX_CONTACT_POINTS, MAX_STRIPS,
-};
+use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::normal::shape::HertzShapeTable;
+use crate::normal::strips::{first_contact_points, StripSolution, MAX_CONTACT_POINTS};
+use crate::normal::{NormalParams, StripModel};
+use crate::numeric::elliptic::complete_elliptic_from_complementary;
 
 /// Kik–Piotrowski's virtual-penetration factor ε [-] (KP1: Piotrowski & Kik 2008 and the seed;
 /// physics.md §5.4).
@@ -338,7 +338,7 @@ impl RemainderTable {
         // `as usize` floors a non-negative value (and saturates below 0) without a call to
         // libm's floor, which baseline x86-64 (no SSE4.1 rounding) would need.
         let k = (x as usize).clamp(1, values.len() - 3);
-        let w = crate::strips::cubic_lagrange_weights(x - k as f64);
+        let w = crate::numeric::interp::cubic_lagrange_weights(x - k as f64);
         w[0] * values[k - 1] + w[1] * values[k] + w[2] * values[k + 1] + w[3] * values[k + 2]
     }
 
@@ -617,8 +617,8 @@ impl StripModel for KikPiotrowski {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::hertz::{hertz_from_approach, HertzPatch};
-    use crate::strips::PatchSummary;
+    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
+    use crate::normal::strips::PatchSummary;
     use std::sync::OnceLock;
 
     /// Lateral curvature of the Hertz cases [1/m] (flat-tread wheel on a 600 mm crown).

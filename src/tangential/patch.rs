@@ -10,7 +10,7 @@
 //! 2. **equivalent ellipse** — one ellipse of the patch's area and length/width ratio,
 //!    a_e = √(S/π)·√(L/W), b_e = √(S/π)·√(W/L), and its three flexibilities (F1) on every strip,
 //!    used individually (Kik–Piotrowski's choice);
-//! 3. **FaStrip** (Sichani et al. 2016) on the equivalent ellipse (`crate::fastrip`);
+//! 3. **FaStrip** (Sichani et al. 2016) on the equivalent ellipse (`crate::tangential::fastrip`);
 //! 4. **local Hertz ellipses** — STRIPES's strip-wise ellipses for any strip model: strip j gets
 //!    a_j = x_l,j and b_j = a_j/(a/b)_H, the Hertz axis ratio of its curvatures (A_j, max(B_j,
 //!    B_min)).
@@ -21,12 +21,15 @@
 //! traction bound is μ × the normal model's own pressure on the strips (§4.3).
 
 use crate::error::InputError;
-use crate::fastsim::{
+use crate::geometry::strips::StripGeometry;
+use crate::normal::shape::HertzShapeTable;
+use crate::normal::strips::{PatchSummary, StripSolution};
+use crate::normal::NormalModel;
+use crate::tangential::fastsim::{
     blend_flexibilities, blending_weight, single_flexibility, three_flexibilities, Creepage,
     EllipticContact, Flexibility,
 };
-use crate::kalker::{creep_coefficients, CreepCoefficients};
-use crate::strips::{HertzShapeTable, NormalModel, PatchSummary, StripGeometry, StripSolution};
+use crate::tangential::kalker::{creep_coefficients, CreepCoefficients};
 
 /// Tangential model on strip patches (`tangentialModel`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -110,7 +113,7 @@ pub struct EquivalentEllipse {
 
 impl EquivalentEllipse {
     /// The equivalent ellipse of `summary` with shear modulus `shear_modulus` [Pa], Poisson ratio
-    /// `nu` and friction `mu`. Errors as `crate::kalker::creep_coefficients`.
+    /// `nu` and friction `mu`. Errors as `crate::tangential::kalker::creep_coefficients`.
     pub fn of(
         summary: &PatchSummary,
         shear_modulus: f64,

@@ -46,13 +46,12 @@ pub mod checks;
 pub mod error;
 pub mod parse;
 pub mod s1002;
-pub mod spline;
 pub mod uic60;
 
 use std::path::Path;
 
+pub use crate::numeric::spline::{smoothing_length_for_noise, CubicSpline};
 pub use error::{ErrorReason, Location, ProfileError};
-pub use spline::{smoothing_length_for_noise, CubicSpline};
 
 /// Fewest points a profile may have.
 pub const MIN_POINTS: usize = 4;

@@ -1,0 +1,5 @@
+//! Numerical helpers shared by the physics: elliptic integrals, splines, interpolation, roots.
+
+pub mod elliptic;
+pub mod interp;
+pub mod spline;
