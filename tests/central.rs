@@ -1,5 +1,5 @@
 //! The non-elliptic normal models on the seed study's central case against Kalker's exact theory
-//! (CONTACT v25.1; data in `../shared/reference/central/`, see its README).
+//! (CONTACT v25.1; data in `tests/data/reference/central/`, see its README).
 //!
 //! Set-up (as the reference): right wheel, benchmark profiles `MBench_S1002_v3.prw` on
 //! `MBench_UIC60_v3.prr` (rail already inclined 1:40, so `rail_inclination = 0`), gauge 1435 mm at

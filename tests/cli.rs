@@ -252,8 +252,8 @@ fn malformed_profile_file_names_file_line_and_reason() {
 #[test]
 fn a_wheel_with_its_flange_on_the_wrong_side_exits_with_1() {
     let benchmark = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/profiles/MBench_S1002_v3.prw");
-    let text = std::fs::read_to_string(&benchmark).expect("the shared benchmark wheel");
+        .join("tests/data/profiles/MBench_S1002_v3.prw");
+    let text = std::fs::read_to_string(&benchmark).expect("the benchmark wheel");
     let unmirrored = text.replacen("mirror.y       =  1", "mirror.y       =  0", 1);
     assert_ne!(unmirrored, text, "the benchmark file sets mirror.y = 1");
     let wheel = temp_file("unmirrored.prw", &unmirrored);

@@ -1,5 +1,5 @@
 //! Wheelset contact geometry against the Manchester contact benchmark, case, solved by
-//! CONTACT v25.1 (physics.md §8.5; data in `../shared/reference/manchester/`).
+//! CONTACT v25.1 (physics.md §8.5; data in `tests/data/reference/manchester/`).
 //!
 //! Set-up (physics.md §8.5, as in the `.inp` files): benchmark profiles `MBench_S1002_v3.prw` on
 //! `MBench_UIC60_v3.prr` (rail already canted 1:40, so `rail_inclination = 0`), gauge 1435 mm at
@@ -33,8 +33,7 @@
 //!   |γ| ≥ 0.6 rad (reference: root 0.29–0.42 rad, flange 0.80–1.16 rad). The jumps are at the same
 //!   shifts when every state falls into the reference's class.
 //!
-//! The benchmark files are found in `$RAILCONTACT_SHARED` or else `../shared` next to the crate;
-//! missing files fail the tests (never skipped). `cargo test --test manchester -- --nocapture`
+//! The benchmark files are vendored in `tests/data` (see its README); missing files fail the tests (never skipped). `cargo test --test manchester -- --nocapture`
 //! prints the comparison tables.
 
 mod common;
@@ -47,7 +46,7 @@ use railcontact::wheelset::{
     Creepages, PatchResult, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
 };
 
-use common::shared_file;
+use common::data_file;
 
 const MM: f64 = 1000.0;
 /// Prescribed vertical load per wheel [N].
@@ -83,7 +82,7 @@ struct Reference {
 }
 
 fn read_summary(name: &str) -> Vec<Reference> {
-    let path = shared_file(&format!("reference/manchester/{name}"));
+    let path = data_file(&format!("reference/manchester/{name}"));
     let text = std::fs::read_to_string(&path).unwrap();
     let mut lines = text.lines().filter(|l| !l.trim().is_empty());
     let header: Vec<&str> = lines.next().unwrap().split(',').map(str::trim).collect();
@@ -134,7 +133,7 @@ struct Pose {
 }
 
 fn read_poses(name: &str) -> Vec<Pose> {
-    let path = shared_file(&format!("reference/manchester/{name}"));
+    let path = data_file(&format!("reference/manchester/{name}"));
     let text = std::fs::read_to_string(&path).unwrap();
     let numbers = |line: &str, n: usize| -> Vec<f64> {
         line.split_whitespace()

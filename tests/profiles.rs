@@ -1,7 +1,6 @@
 //! Profile readers against the Manchester benchmark files and malformed input.
 //!
-//! The benchmark files live outside the crate, in `../shared/profiles/` (physics.md §8.4–8.5);
-//! set `RAILCONTACT_PROFILES` to read them from elsewhere. Malformed inputs are written to a
+//! The benchmark files are vendored in `tests/data/profiles/` (see `tests/data/README.md`). Malformed inputs are written to a
 //! temporary directory; every error message must name the file, the line (where one is to blame)
 //! and the reason, and nothing may panic.
 
@@ -14,18 +13,12 @@ use railcontact::geometry::profile::{
 const MM: f64 = 1000.0;
 
 fn bench_dir() -> PathBuf {
-    std::env::var_os("RAILCONTACT_PROFILES")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles"))
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/profiles")
 }
 
 fn bench(name: &str) -> PathBuf {
     let p = bench_dir().join(name);
-    assert!(
-        p.is_file(),
-        "benchmark profile {} not found (set RAILCONTACT_PROFILES)",
-        p.display()
-    );
+    assert!(p.is_file(), "benchmark profile {} not found", p.display());
     p
 }
 

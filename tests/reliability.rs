@@ -262,10 +262,10 @@ fn write(dir: &Path, file: &str, text: &[u8]) -> String {
     p.to_string_lossy().into_owned()
 }
 
-/// The shared benchmark profile `file` (e.g. `MBench_S1002_v3.prw`).
+/// The benchmark profile `file` (e.g. `MBench_S1002_v3.prw`).
 fn benchmark(file: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/profiles")
+        .join("tests/data/profiles")
         .join(file)
 }
 
@@ -276,7 +276,7 @@ fn benchmark_rail_csv(f: impl Fn(f64, f64) -> (f64, f64)) -> Vec<u8> {
         None,
         0.0,
     )
-    .expect("the shared benchmark rail");
+    .expect("the benchmark rail");
     let (y, z) = rail.points();
     let mut text = String::from("y,z\n");
     for (&a, &b) in y.iter().zip(z) {
@@ -286,11 +286,12 @@ fn benchmark_rail_csv(f: impl Fn(f64, f64) -> (f64, f64)) -> Vec<u8> {
     text.into_bytes()
 }
 
-/// The shared benchmark wheel file with line `line` (1-based) replaced by `text`.
+/// The benchmark wheel file with line `line` (1-based) replaced by `text`.
 fn benchmark_wheel_with(line: usize, text: &str) -> Vec<u8> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles/MBench_S1002_v3.prw");
-    let original = std::fs::read_to_string(&path)
-        .unwrap_or_else(|e| panic!("{}: {e} (the shared profiles are required)", path.display()));
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/profiles/MBench_S1002_v3.prw");
+    let original =
+        std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut lines: Vec<&str> = original.lines().collect();
     lines[line - 1] = text;
     (lines.join("\n") + "\n").into_bytes()
@@ -315,8 +316,8 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
     let nan = write(&dir, "nan.csv", b"y z\n0 0\n1 nan\n2 0\n3 0\n");
     let empty = write(&dir, "empty.prw", b"");
     // Parse cleanly, but fail the plausibility checks (railcontact::geometry::profile::checks).
-    let benchmark_wheel = std::fs::read_to_string(benchmark("MBench_S1002_v3.prw"))
-        .expect("the shared benchmark wheel");
+    let benchmark_wheel =
+        std::fs::read_to_string(benchmark("MBench_S1002_v3.prw")).expect("the benchmark wheel");
     let unmirrored = write(
         &dir,
         "unmirrored.prw",

@@ -1,5 +1,5 @@
 //! `railcontact report` run as a process: regenerates the validation report into a temporary
-//! directory with the shared CONTACT reference (`../shared/reference`, or `$RAILCONTACT_SHARED`;
+//! directory with the vendored CONTACT reference (`tests/data/reference`;
 //! missing data fail the test, never skip it) and checks that every figure exists as a valid SVG
 //! and PNG, that report.md embeds them, and that the error table's numbers are the library's own:
 //! the central case's area and pmax of ANALYN and STRIPES-A&B and ANALYN's pure-spin forces,
@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::{benchmark_wheelset_with, read_csv, shared_dir, shared_file};
+use common::{benchmark_wheelset_with, data_dir, data_file, read_csv};
 use railcontact::material::Material;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::Creepage;
@@ -213,10 +213,10 @@ const ROLLING: Creepages = Creepages::Kinematic {
 
 #[test]
 fn report_reproduces_the_figures_and_the_error_table() {
-    // Fails (never skips) without the shared data.
-    shared_file("reference/central/normal_dy0_summary.csv");
-    shared_file("profiles/MBench_S1002_v3.prw");
-    let reference = shared_dir().join("reference");
+    // Fails (never skips) without the vendored data.
+    data_file("reference/central/normal_dy0_summary.csv");
+    data_file("profiles/MBench_S1002_v3.prw");
+    let reference = data_dir().join("reference");
     let out = temp_dir("with-reference");
     let o = report(
         &[
@@ -314,7 +314,7 @@ fn report_reproduces_the_figures_and_the_error_table() {
 
 #[test]
 fn report_without_reference_draws_the_models_alone() {
-    // Built-in profiles: a working directory without ../shared, no --reference.
+    // Built-in profiles: a working directory without tests/data, no --reference.
     let cwd = temp_dir("cwd");
     let work = cwd.join("work");
     std::fs::create_dir_all(&work).unwrap();

@@ -438,9 +438,9 @@ mod tests {
     #[test]
     fn a_bundled_profile_loads_by_its_bare_name() {
         let benchmark = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../shared/profiles/MBench_S1002_v3.prw")
+            .join("../tests/data/profiles/MBench_S1002_v3.prw")
             .canonicalize()
-            .expect("the shared benchmark profiles are required");
+            .expect("the benchmark profiles are required");
         let dir = std::env::temp_dir().join(format!("fmu-pack-bundled-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();

@@ -67,9 +67,9 @@ report  Reproduces the seed study's validation: writes SVG and PNG figures (patc
         pressure per strip, pure-spin traction planar and non-planar, STRIPES over lateral
         shifts, creep curves), report.md and errors.csv into --out DIR (default report/).
         Without CASE.json: the seed's central case (benchmark profiles from the reference's
-        ../profiles or ../shared/profiles, else the built-in S1002/UIC60 at 1:40; 78.5 kN,
+        ../profiles or tests/data/profiles, else the built-in S1002/UIC60 at 1:40; 78.5 kN,
         E = 210 GPa, nu = 0.28, mu = 0.3, centred). --reference DIR: CONTACT's reference
-        directory (default ../shared/reference if it exists; without it no error table).
+        directory (default tests/data/reference if it exists; without it no error table).
         --quick draws the creep curves at the reference creepages only. Progress on stderr.
 
 Profile files are checked when loaded (units, flange side, coverage of the running surface,

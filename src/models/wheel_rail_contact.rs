@@ -608,15 +608,11 @@ mod tests {
     #[test]
     fn relative_profile_names_are_looked_up_in_the_resources_first() {
         let benchmark =
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles/MBench_S1002_v3.prw");
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/profiles/MBench_S1002_v3.prw");
         let resources = std::env::temp_dir().join(format!("wrc-resources-{}", std::process::id()));
         std::fs::create_dir_all(&resources).unwrap();
-        std::fs::copy(&benchmark, resources.join("MBench_S1002_v3.prw")).unwrap_or_else(|e| {
-            panic!(
-                "{}: {e} (the shared profiles are required)",
-                benchmark.display()
-            )
-        });
+        std::fs::copy(&benchmark, resources.join("MBench_S1002_v3.prw"))
+            .unwrap_or_else(|e| panic!("{}: {e}", benchmark.display()));
         let wheel = ProfileKind::Wheel;
         let bundled = load_profile("MBench_S1002_v3.prw", wheel, 1e-3, Some(&resources)).unwrap();
         let direct = Profile::from_file(&benchmark, Some(wheel), 1e-3).unwrap();

@@ -1,5 +1,5 @@
-//! Shared set-up of the integration tests: the data directory of `../shared` and the benchmark
-//! wheelset (physics.md §8.5; reference/README.md), and the built-in S1002/UIC60 wheelset (also
+//! Shared set-up of the integration tests: the vendored data of `tests/data` and the benchmark
+//! wheelset (`tests/data/README.md`), and the built-in S1002/UIC60 wheelset (also
 //! included by `benches/contact.rs` and `examples/solve_loop.rs`).
 
 use std::path::{Path, PathBuf};
@@ -10,30 +10,15 @@ use railcontact::material::Material;
 use railcontact::normal::NormalModel;
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetSettings};
 
-/// `$RAILCONTACT_SHARED`, or else `../shared` next to the crate.
-pub fn shared_dir() -> PathBuf {
-    std::env::var_os("RAILCONTACT_SHARED")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"))
+/// The vendored test data: `tests/data` (profiles and reference solutions, see its README).
+pub fn data_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data")
 }
 
-/// A file of the shared data; fails (never skips) when it is missing.
-pub fn shared_file(relative: &str) -> PathBuf {
-    let dir = shared_dir();
-    let p = dir.join(relative);
-    assert!(
-        p.is_file(),
-        "shared data file {} not found (shared data directory {} — from {}). These tests are \
-         acceptance tests and must not be skipped: set RAILCONTACT_SHARED to the directory \
-         holding profiles/ and reference/.",
-        p.display(),
-        dir.display(),
-        if std::env::var_os("RAILCONTACT_SHARED").is_some() {
-            "$RAILCONTACT_SHARED"
-        } else {
-            "the default CARGO_MANIFEST_DIR/../shared"
-        }
-    );
+/// A file of the test data; fails (never skips) when it is missing.
+pub fn data_file(relative: &str) -> PathBuf {
+    let p = data_dir().join(relative);
+    assert!(p.is_file(), "test data file {} not found", p.display());
     p
 }
 
@@ -52,7 +37,7 @@ pub fn benchmark_wheelset_with(
     adjust: impl FnOnce(&mut WheelsetSettings),
 ) -> Wheelset {
     let load = |file: &str, kind| {
-        let p = shared_file(&format!("profiles/{file}"));
+        let p = data_file(&format!("profiles/{file}"));
         Profile::load(p.to_str().unwrap(), kind, 0.0)
             .unwrap_or_else(|e| panic!("loading {}: {e}", p.display()))
     };
@@ -118,11 +103,11 @@ pub fn moving_y(k: u64) -> f64 {
     3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin()
 }
 
-/// Rows of a reference CSV file of the shared data as (header → value) maps; non-numeric fields
+/// Rows of a reference CSV file of the vendored data as (header → value) maps; non-numeric fields
 /// are left out.
 #[allow(dead_code)] // not every test crate that includes this module reads CSV files
 pub fn read_csv(relative: &str) -> Vec<std::collections::HashMap<String, f64>> {
-    let path = shared_file(relative);
+    let path = data_file(relative);
     let text = std::fs::read_to_string(&path).expect("readable reference file");
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().expect("header").split(',').collect();

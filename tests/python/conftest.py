@@ -8,7 +8,7 @@ tests are the acceptance gate of the packed FMUs.
 
 ``bundled_fmu_dir`` packs a second set with the benchmark profiles in ``resources/`` by running
 the packer's command (``cargo run --release -p fmu-pack -- --resource … --out DIR``); the
-benchmark files come from ``$RAILCONTACT_SHARED`` or ``<repo>/../shared`` (``shared_file``).
+benchmark files come from ``tests/data`` (``data_file``).
 ``run_ecos`` runs ``ecos_driver.py`` (the Ecos host, in a subprocess).
 
 The fixtures ``fmu_path``, ``model_description``, ``unzipdir`` and ``shared_library`` are those
@@ -56,7 +56,6 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 FMU_FILE_NAME = "HertzContact.fmu"
 WRC_FMU_FILE_NAME = "WheelRailContact.fmu"
 FMU_DIR_ENV = "RAILCONTACT_FMU_DIR"
-SHARED_ENV = "RAILCONTACT_SHARED"
 
 STEP = 1e-3  # s; the default experiments' step size (both models)
 
@@ -162,14 +161,11 @@ def wrc_unzipdir(wrc_fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -
 # The benchmark files and FMUs with them in resources/
 
 
-def shared_file(relative: str) -> Path:
-    """A file of the shared benchmark data; fails (never skips) when missing."""
-    env = os.environ.get(SHARED_ENV)
-    root = Path(env) if env else REPO_ROOT.parent / "shared"
-    path = (root / relative).resolve()
+def data_file(relative: str) -> Path:
+    """A file of the vendored test data (``tests/data``); fails (never skips) when missing."""
+    path = REPO_ROOT / "tests" / "data" / relative
     if not path.is_file():
-        origin = f"${SHARED_ENV}={env!r}" if env else f"the default {REPO_ROOT.parent / 'shared'}"
-        pytest.fail(f"benchmark file {path} not found (shared data directory from {origin})", pytrace=False)
+        pytest.fail(f"test data file {path} not found", pytrace=False)
     return path
 
 
@@ -190,7 +186,7 @@ def bundled_fmu_dir(tmp_path_factory: pytest.TempPathFactory) -> PackerRun:
     out_dir = tmp_path_factory.mktemp("bundled") / "fmu"
     command = [cargo, "run", "--release", "-q", "-p", "fmu-pack", "--"]
     for relative in BUNDLED_PROFILES:
-        command += ["--resource", str(shared_file(relative))]
+        command += ["--resource", str(data_file(relative))]
     command += ["--out", str(out_dir)]
     proc = subprocess.run(command, cwd=REPO_ROOT, capture_output=True, text=True, timeout=1200)
     if proc.returncode != 0:

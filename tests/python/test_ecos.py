@@ -29,7 +29,7 @@ from conftest import (
     bits,
     packed_fmu,
     run_ecos,
-    shared_file,
+    data_file,
 )
 
 # The input each model's sweep drives (the same sweeps as fmu-pack's default experiments).
@@ -141,8 +141,8 @@ def test_a_bundled_profile_loads_by_its_bare_name_in_ecos(bundled_fmu_dir: Packe
             "step_size": 0.001,
             "start": {
                 **common,
-                "wheelProfile": str(shared_file(BUNDLED_PROFILES[0])),
-                "railProfile": str(shared_file(BUNDLED_PROFILES[1])),
+                "wheelProfile": str(data_file(BUNDLED_PROFILES[0])),
+                "railProfile": str(data_file(BUNDLED_PROFILES[1])),
             },
             "steps": steps,
             "read": read,

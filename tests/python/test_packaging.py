@@ -34,7 +34,7 @@ from conftest import (
     bits,
     packed_fmu,
     require_tool,
-    shared_file,
+    data_file,
 )
 
 MODELS = ("HertzContact", "WheelRailContact")
@@ -103,7 +103,7 @@ def test_packer_bundles_the_resources_in_every_fmu(bundled_fmu_dir: PackerRun) -
                 name = Path(relative).name
                 info = z.getinfo(f"resources/{name}")
                 assert info.compress_type == zipfile.ZIP_DEFLATED
-                assert z.read(info) == shared_file(relative).read_bytes(), (file_name, name)
+                assert z.read(info) == data_file(relative).read_bytes(), (file_name, name)
     # The packer ran both default experiments on the bundled FMUs and says how to use the files.
     assert "WheelRailContact: types platform" in bundled_fmu_dir.stdout
     assert 'wheelProfile = "MBench_S1002_v3.prw"' in bundled_fmu_dir.stdout
@@ -123,7 +123,7 @@ def test_a_bare_profile_name_loads_the_bundled_file_in_fmpy(bundled_fmu_dir: Pac
     )
     by_path = _simulate(
         packed_fmu(WRC_FMU_FILE_NAME),
-        {**common, **{k: str(shared_file(r)) for k, r in zip(("wheelProfile", "railProfile"), BUNDLED_PROFILES)}},
+        {**common, **{k: str(data_file(r)) for k, r in zip(("wheelProfile", "railProfile"), BUNDLED_PROFILES)}},
     )
     builtin = _simulate(packed_fmu(WRC_FMU_FILE_NAME), common)
     assert len(bundled) == len(by_path) == 9

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
 import subprocess
 import sys
@@ -37,9 +36,8 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave, fmi2Error, fmi2OK
 from fmpy.model_description import ModelDescription
 
-from conftest import REPO_ROOT, STEP, Slave, bits, slave_factory
+from conftest import REPO_ROOT, STEP, Slave, bits, data_file, slave_factory
 
-SHARED_ENV = "RAILCONTACT_SHARED"
 
 # Inputs of the WheelRailContact random walk, in the order of `random_walk`'s columns.
 WALK_INPUTS = ("y", "yaw", "roll", "Qleft", "Qright", "vx", "vy", "yawRate", "omega")
@@ -153,18 +151,9 @@ def test_zero_loads_are_not_errors(new_hc, new_wrc) -> None:
     assert not hc.errors() and not wrc.errors()
 
 
-def shared_file(relative: str) -> Path:
-    env = os.environ.get(SHARED_ENV)
-    root = Path(env) if env else REPO_ROOT.parent / "shared"
-    path = (root / relative).resolve()
-    if not path.is_file():
-        pytest.fail(f"shared data file {path} not found; set {SHARED_ENV}", pytrace=False)
-    return path
-
-
 def bad_profile_cases(tmp: Path) -> list[tuple[str, str, list[str]]]:
     """(parameter, value, regexes the error message must match)."""
-    lines = shared_file("profiles/MBench_S1002_v3.prw").read_text().splitlines()
+    lines = data_file("profiles/MBench_S1002_v3.prw").read_text().splitlines()
     lines[59] = "6.3414676E+01\t2.45x3554E+01"  # line 60, a point row
     malformed = tmp / "malformed wheel.prw"
     malformed.write_text("\n".join(lines) + "\n")

@@ -11,8 +11,8 @@ What is checked, in file order:
    Terminated = true, and `simulate_fmu` stops there; NaN inputs are rejected and logged;
 4. wheel lift-off, FMU state get/set, two instances in one process.
 
-Nothing is skipped: a missing FMU or missing benchmark file fails. The benchmark files are found in
-``$RAILCONTACT_SHARED`` or else ``<repo>/../shared``. Shared helpers (the `Slave` wrapper, the
+Nothing is skipped: a missing FMU or missing benchmark file fails. The benchmark files are those of
+``tests/data``. Shared helpers (the `Slave` wrapper, the
 process-wide log router) are in conftest.py.
 """
 
@@ -21,7 +21,6 @@ from __future__ import annotations
 import csv
 import json
 import math
-import os
 import re
 import subprocess
 import sys
@@ -36,9 +35,8 @@ from fmpy.fmi2 import fmi2Discard, fmi2Error, fmi2LastSuccessfulTime, fmi2Termin
 from fmpy.model_description import ModelDescription
 from fmpy.validation import validate_fmu
 
-from conftest import EXPECTED_FMI2_EXPORTS, REPO_ROOT, Slave, bits, require_tool, slave_factory
+from conftest import EXPECTED_FMI2_EXPORTS, REPO_ROOT, Slave, bits, data_file, require_tool, slave_factory
 
-SHARED_ENV = "RAILCONTACT_SHARED"
 
 # Start values of the model description (modelDescription/WheelRailContact.json).
 Q_DEFAULT = 78_500.0  # N per wheel
@@ -60,21 +58,6 @@ PATCHES = (1, 2, 3)
 def new_wrc(wrc_model_description: ModelDescription, wrc_unzipdir: Path):
     """Factory: `new_wrc(params=..., inputs=..., initialize=True, name=None)`; frees at teardown."""
     yield from slave_factory(wrc_model_description, wrc_unzipdir)
-
-
-def shared_file(relative: str) -> Path:
-    """A file of the shared benchmark data; fails (never skips) when missing."""
-    env = os.environ.get(SHARED_ENV)
-    root = Path(env) if env else REPO_ROOT.parent / "shared"
-    path = (root / relative).resolve()
-    if not path.is_file():
-        origin = f"${SHARED_ENV}={env!r}" if env else f"the default {REPO_ROOT.parent / 'shared'}"
-        pytest.fail(
-            f"benchmark file {path} not found (shared data directory from {origin}); set "
-            f"{SHARED_ENV} to the directory holding profiles/ and reference/manchester/",
-            pytrace=False,
-        )
-    return path
 
 
 def dominant_angle(out: Mapping[str, float], side: str = "right") -> float:
@@ -164,7 +147,7 @@ def test_default_experiment_with_a_lateral_shift_sweep(
 
 def _manchester_pose(y_mm: float) -> dict[str, float]:
     """The wheelset pose of the Manchester A-2.2 state at y_mm, read from CONTACT's input file."""
-    text = shared_file("reference/manchester/mbench_a22_right.inp").read_text().splitlines()
+    text = data_file("reference/manchester/mbench_a22_right.inp").read_text().splitlines()
     for i, line in enumerate(text):
         if "S, Y, FZ, ROLL, YAW, PITCH" not in line:
             continue
@@ -179,7 +162,7 @@ def _manchester_pose(y_mm: float) -> dict[str, float]:
 
 
 def _manchester_reference(y_mm: float) -> dict[str, float]:
-    with shared_file("reference/manchester/summary_right.csv").open(newline="") as f:
+    with data_file("reference/manchester/summary_right.csv").open(newline="") as f:
         for row in csv.DictReader(f):
             if abs(float(row["y_ws_mm"]) - y_mm) < 1e-9:
                 return {k: float(v) for k, v in row.items()}
@@ -188,8 +171,8 @@ def _manchester_reference(y_mm: float) -> dict[str, float]:
 
 def test_manchester_right_wheel_at_2mm_through_the_fmu(new_wrc) -> None:
     params = {
-        "wheelProfile": str(shared_file("profiles/MBench_S1002_v3.prw")),
-        "railProfile": str(shared_file("profiles/MBench_UIC60_v3.prr")),
+        "wheelProfile": str(data_file("profiles/MBench_S1002_v3.prw")),
+        "railProfile": str(data_file("profiles/MBench_UIC60_v3.prr")),
         "railInclination": 0.0,  # the benchmark rail is already canted 1:40
         "trackGauge": 1.435,
         "flangeBackDistance": 1.36,
@@ -227,7 +210,7 @@ def _initialize_expecting_error(slave: Slave, **params: str) -> FMICallException
 
 
 def test_malformed_profile_file_fails_initialization(new_wrc, tmp_path: Path) -> None:
-    lines = shared_file("profiles/MBench_S1002_v3.prw").read_text().splitlines()
+    lines = data_file("profiles/MBench_S1002_v3.prw").read_text().splitlines()
     line_no = 60  # a point row "6.3414676E+01	2.4573554E+01"
     assert lines[line_no - 1].split() == ["6.3414676E+01", "2.4573554E+01"], lines[line_no - 1]
     lines[line_no - 1] = "6.3414676E+01\t2.45x3554E+01"
@@ -451,8 +434,8 @@ NORMAL_MODELS = {2: "Linder", 3: "Kik-Piotrowski", 4: "STRIPES-B", 5: "STRIPES-A
 def _central_params(model: int) -> dict[str, float | int | str]:
     """The seed's central case (reference/central/README): benchmark profiles, E = 210 GPa."""
     return {
-        "wheelProfile": str(shared_file("profiles/MBench_S1002_v3.prw")),
-        "railProfile": str(shared_file("profiles/MBench_UIC60_v3.prr")),
+        "wheelProfile": str(data_file("profiles/MBench_S1002_v3.prw")),
+        "railProfile": str(data_file("profiles/MBench_UIC60_v3.prr")),
         "railInclination": 0.0,
         "E": 2.1e11,
         "nu": 0.28,
@@ -486,7 +469,7 @@ def test_every_normal_model_runs_a_lateral_sweep_in_fmpy(new_wrc, model: int) ->
 def test_central_case_area_and_pmax_through_the_fmu(new_wrc) -> None:
     # ANALYN (normalModel 6) against the exact theory, through the FMU: the issue's tolerances
     # (area ±10 %, pmax ±15 %); reference/central/normal_dy0_summary.csv.
-    with open(shared_file("reference/central/normal_dy0_summary.csv"), newline="") as f:
+    with open(data_file("reference/central/normal_dy0_summary.csv"), newline="") as f:
         ref = next(csv.DictReader(f))
     slave = new_wrc(params=_central_params(6))
     slave.step()
@@ -541,7 +524,7 @@ def test_tangential_options_through_the_fmu(new_wrc, tangential: int, planar: bo
 def test_pure_spin_through_the_fmu(new_wrc) -> None:
     # The recommended option (ANALYN, tangentialModel 1, planar patch) against the exact theory
     # (reference/central/pure_spin_summary.csv): the issue's tolerances, Mz ±15 %, Fy ±10 %.
-    with open(shared_file("reference/central/pure_spin_summary.csv"), newline="") as f:
+    with open(data_file("reference/central/pure_spin_summary.csv"), newline="") as f:
         ref = next(csv.DictReader(f))
     params = _central_params(6) | {"planarPatch": True, "creepageMode": 2, "mu": 0.3}
     slave = new_wrc(params=params)

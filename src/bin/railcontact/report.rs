@@ -4,7 +4,7 @@
 //!
 //! The case: without CASE.json the seed's central case — the benchmark profiles
 //! `MBench_S1002_v3.prw` on `MBench_UIC60_v3.prr` from `<reference>/../profiles` (or
-//! `../shared/profiles`; rail already inclined 1:40, so `railInclination` = 0), gauge 1435 mm,
+//! `tests/data/profiles`; rail already inclined 1:40, so `railInclination` = 0), gauge 1435 mm,
 //! flange-back distance 1360 mm, radius 460 mm, E = 210 GPa, ν = 0.28, μ = 0.3, 78.5 kN per
 //! wheel, centred, pure rolling at 2 m/s (as `tests/central.rs`); without those files the
 //! built-in S1002/UIC60 with the rail inclined 1:40. A CASE.json is read as `railcontact solve`
@@ -12,7 +12,7 @@
 //! `tangentialModel`, `planarPatch`, the creepages or the lateral shift `y` itself.
 //!
 //! The reference (CONTACT's solution of the seed's central case): `--reference DIR`, else
-//! `../shared/reference` when that directory exists, else none — then the figures show the
+//! `tests/data/reference` when that directory exists, else none — then the figures show the
 //! models alone and the error table is left out.
 //!
 //! Figures ([`figures`]): patch outlines, pressure per strip, pure spin planar and non-planar,
@@ -93,7 +93,7 @@ fn parse(rest: &[String]) -> Result<ReportArgs, Failure> {
                 dir.display()
             )))
         }
-        None => Some(PathBuf::from("../shared/reference")).filter(|d| d.is_dir()),
+        None => Some(PathBuf::from("tests/data/reference")).filter(|d| d.is_dir()),
     };
     Ok(ReportArgs {
         case: a.case,
@@ -104,10 +104,10 @@ fn parse(rest: &[String]) -> Result<ReportArgs, Failure> {
 }
 
 /// The directory holding both benchmark profiles: next to the reference directory, else
-/// `../shared/profiles`.
+/// `tests/data/profiles`.
 fn profile_dir(reference: Option<&Path>) -> Option<PathBuf> {
     let beside = reference.and_then(Path::parent).map(|p| p.join("profiles"));
-    [beside, Some(PathBuf::from("../shared/profiles"))]
+    [beside, Some(PathBuf::from("tests/data/profiles"))]
         .into_iter()
         .flatten()
         .find(|d| d.join(WHEEL_FILE).is_file() && d.join(RAIL_FILE).is_file())
@@ -505,7 +505,7 @@ fn summary(
         None => {
             let _ = writeln!(
                 md,
-                "* Reference: none found (`--reference DIR` or `../shared/reference`): the \
+                "* Reference: none found (`--reference DIR` or `tests/data/reference`): the \
                  figures show the models alone and the error table is omitted."
             );
         }
@@ -554,7 +554,7 @@ fn summary(
             let _ = writeln!(
                 md,
                 "No reference data: the error table is omitted. Pass `--reference DIR` (CONTACT's \
-                 reference directory, e.g. `../shared/reference`)."
+                 reference directory, e.g. `tests/data/reference`)."
             );
         }
     }
