@@ -9,7 +9,6 @@
 //! Units are SI at every public boundary (m, N, Pa, rad, s); frames and signs are documented in
 //! `docs/conventions.md`.
 
-pub mod case_json;
 pub mod error;
 pub mod halfspace;
 

@@ -10,9 +10,16 @@ use railcontact::material::Material;
 use railcontact::normal::NormalModel;
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetSettings};
 
-/// The vendored test data: `tests/data` (profiles and reference solutions, see its README).
+/// The vendored test data: the repository's `tests/data` (profiles and reference solutions, see
+/// its README), found from the including crate's directory upwards (the root crate or a
+/// workspace member such as `cli/`).
 pub fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data")
+    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest
+        .ancestors()
+        .map(|dir| dir.join("tests/data"))
+        .find(|dir| dir.is_dir())
+        .unwrap_or_else(|| manifest.join("tests/data"))
 }
 
 /// A file of the test data; fails (never skips) when it is missing.
