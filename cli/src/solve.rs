@@ -298,7 +298,9 @@ mod tests {
         };
         assert_eq!(points.len(), 4);
         let x: Vec<f64> = points.iter().map(|p| p[0].as_f64().unwrap()).collect();
-        assert_eq!(x, [-0.00125, 0.00025, 0.00175, 0.00325]);
+        for (x, expected) in x.iter().zip([-0.00125, 0.00025, 0.00175, 0.00325]) {
+            assert!((x - expected).abs() < 1e-15, "{x} vs {expected}");
+        }
         assert!(points.iter().all(|p| p[1] == 0.001));
     }
 }
