@@ -10,7 +10,6 @@
 //! `docs/conventions.md`.
 
 pub mod error;
-pub mod halfspace;
 
 // Layers, bottom up: numbers, geometry, normal and tangential contact, the contact point and the
 // wheelset that assemble them, the FMI glue and the models it exports.

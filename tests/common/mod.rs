@@ -10,15 +10,16 @@ use railcontact::material::Material;
 use railcontact::normal::NormalModel;
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetSettings};
 
-/// The vendored test data: the repository's `tests/data` (profiles and reference solutions, see
-/// its README), found from the including crate's directory upwards (the root crate or a
-/// workspace member such as `cli/`).
+/// The vendored test data: `tests/data` of the repository root (profiles and reference
+/// solutions, see its README). This module is also included by other workspace members (e.g.
+/// `halfspace/tests`), whose manifest directory lies below the root: the data is looked up in
+/// the including crate's directory and then in its ancestors.
 pub fn data_dir() -> PathBuf {
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
     manifest
         .ancestors()
         .map(|dir| dir.join("tests/data"))
-        .find(|dir| dir.is_dir())
+        .find(|data| data.join("README.md").is_file())
         .unwrap_or_else(|| manifest.join("tests/data"))
 }
 
