@@ -37,7 +37,7 @@ use crate::normal::{NormalModel, NormalParams, StripModel};
 use crate::tangential::fastsim::Creepage;
 use crate::tangential::patch::{strip_flexibilities, EquivalentEllipse, TangentialModel};
 use crate::tangential::strip_fastsim::TangentialStrip;
-use crate::wheelset::balance::balance;
+use crate::wheelset::balance::{balance, ForceLaw};
 
 /// One non-elliptic patch: its plane, strips, model state, solution and weight.
 pub struct StripPatch {
@@ -316,7 +316,7 @@ impl StripSide {
         table: &HertzShapeTable,
     ) -> f64 {
         let first = approach.max(1e-9);
-        let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, |dz| {
+        let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, ForceLaw::General, |dz| {
             Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q)
         });
         if !balanced.evaluated {
