@@ -253,6 +253,29 @@ fn load_profile(
     Err(fail(&text))
 }
 
+/// The wheel and rail profiles the parameters `wheelProfile`, `railProfile` and
+/// `profileSmoothing` name (relative paths looked up in `resources` first, then in the working
+/// directory).
+pub fn profiles(
+    values: &Values,
+    resources: Option<&Path>,
+) -> Result<(Profile, Profile), ModelError> {
+    let smoothing = values.real(var::profileSmoothing);
+    let wheel = load_profile(
+        values.string(var::wheelProfile),
+        ProfileKind::Wheel,
+        smoothing,
+        resources,
+    )?;
+    let rail = load_profile(
+        values.string(var::railProfile),
+        ProfileKind::Rail,
+        smoothing,
+        resources,
+    )?;
+    Ok((wheel, rail))
+}
+
 /// The wheelset settings the parameters describe.
 pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
     // The one constraint between parameters (each is range-checked when set): the wheels must
@@ -398,20 +421,7 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
 
 impl Model for WheelRailContact {
     fn initialize(&mut self, values: &Values) -> Result<(), ModelError> {
-        let smoothing = values.real(var::profileSmoothing);
-        let resources = self.resource_dir.as_deref();
-        let wheel = load_profile(
-            values.string(var::wheelProfile),
-            ProfileKind::Wheel,
-            smoothing,
-            resources,
-        )?;
-        let rail = load_profile(
-            values.string(var::railProfile),
-            ProfileKind::Rail,
-            smoothing,
-            resources,
-        )?;
+        let (wheel, rail) = profiles(values, self.resource_dir.as_deref())?;
         let wheelset = Wheelset::new(&wheel, &rail, settings(values)?)
             .map_err(|e| ModelError::Error(e.to_string()))?;
         self.solver = Some(Solver {

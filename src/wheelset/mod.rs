@@ -26,6 +26,7 @@
 //! track; the wheelset's angular velocity has no roll-rate term.
 
 pub mod balance;
+pub mod conicity;
 mod hertz_side;
 mod kinematics;
 mod slots;
