@@ -49,10 +49,12 @@ use crate::error::{require_positive, InputError};
 use crate::geometry::profile::Profile;
 use crate::geometry::search::{ContactPoint, SearchError, SidePose, WheelOnRail};
 use crate::geometry::track::{GeometryError, TrackSetup};
+use crate::numeric::roots::Illinois;
 
 /// Roll iteration: largest |gap difference| accepted [m] (far below any radius difference).
 const ROLL_GAP_TOLERANCE: f64 = 1e-13;
-/// Roll iteration: iteration limit (Illinois converges in ~6–10 steps).
+/// Roll iteration: iteration limit (Illinois, [`crate::numeric::roots`], converges in ~6–10
+/// steps).
 const ROLL_ITERATIONS: usize = 100;
 /// Runge–Kutta steps per estimated wavelength of the Klingel integration: the phase error of a
 /// linear oscillator is O((ωh)⁴) ≈ 6e−12 per cycle, the error of the kinks of the interpolated
@@ -234,7 +236,8 @@ impl Pair {
 
     /// The roll angle at which both wheels touch at shift `y`, starting from `guess`, with the
     /// contact points: the gap difference g(θ) = gap_right − gap_left falls with θ (rolling
-    /// lowers the right wheel); bracketed by steps that double, then Illinois.
+    /// lowers the right wheel); bracketed by steps that double, then Illinois
+    /// ([`crate::numeric::roots`]).
     fn rest(
         &mut self,
         y: f64,
@@ -253,7 +256,7 @@ impl Pair {
         let direction = g0.signum();
         let mut step = g0.abs() / (2.0 * half_spacing) + 1e-9;
         let (mut a, mut ga) = (guess, g0);
-        let (mut b, mut gb) = loop {
+        let (b, gb) = loop {
             let theta = guess + direction * step;
             let (g, r, l) = eval(theta)?;
             if g.abs() <= ROLL_GAP_TOLERANCE {
@@ -268,26 +271,20 @@ impl Pair {
                 return Err(ConicityError::Roll { y });
             }
         };
-        let mut side = 0i8;
+        // The bracket holds −g (g falls with θ): its negative end is the one with g > 0.
+        let (positive, negative) = if ga > 0.0 {
+            ((a, ga), (b, gb))
+        } else {
+            ((b, gb), (a, ga))
+        };
+        let mut bracket = Illinois::new((positive.0, -positive.1), (negative.0, -negative.1));
         for _ in 0..ROLL_ITERATIONS {
-            let theta = (a * gb - b * ga) / (gb - ga);
+            let theta = bracket.inside_or_midpoint(bracket.secant());
             let (g, r, l) = eval(theta)?;
-            if g.abs() <= ROLL_GAP_TOLERANCE || (b - a).abs() <= 1e-15 {
+            if g.abs() <= ROLL_GAP_TOLERANCE || bracket.width() <= 1e-15 {
                 return Ok((theta, r, l));
             }
-            if g.signum() == gb.signum() {
-                (b, gb) = (theta, g);
-                if side == -1 {
-                    ga *= 0.5;
-                }
-                side = -1;
-            } else {
-                (a, ga) = (theta, g);
-                if side == 1 {
-                    gb *= 0.5;
-                }
-                side = 1;
-            }
+            bracket.update(theta, -g);
         }
         Err(ConicityError::Roll { y })
     }
