@@ -57,7 +57,7 @@ struct Solver {
 }
 
 /// Output handles of one patch, in the order of [`patch_values`].
-type PatchVars = [RealVar; 18];
+type PatchVars = [RealVar; 21];
 
 fn patch_vars(right: bool, k: usize) -> PatchVars {
     use var::*;
@@ -72,6 +72,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p1_length,
             left_p1_width,
             left_p1_yRail,
+            left_p1_xPos,
+            left_p1_yPos,
+            left_p1_zPos,
             left_p1_contactAngle,
             left_p1_rollingRadius,
             left_p1_penetration,
@@ -92,6 +95,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p2_length,
             left_p2_width,
             left_p2_yRail,
+            left_p2_xPos,
+            left_p2_yPos,
+            left_p2_zPos,
             left_p2_contactAngle,
             left_p2_rollingRadius,
             left_p2_penetration,
@@ -112,6 +118,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p3_length,
             left_p3_width,
             left_p3_yRail,
+            left_p3_xPos,
+            left_p3_yPos,
+            left_p3_zPos,
             left_p3_contactAngle,
             left_p3_rollingRadius,
             left_p3_penetration,
@@ -134,6 +143,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p1_length,
             right_p1_width,
             right_p1_yRail,
+            right_p1_xPos,
+            right_p1_yPos,
+            right_p1_zPos,
             right_p1_contactAngle,
             right_p1_rollingRadius,
             right_p1_penetration,
@@ -154,6 +166,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p2_length,
             right_p2_width,
             right_p2_yRail,
+            right_p2_xPos,
+            right_p2_yPos,
+            right_p2_zPos,
             right_p2_contactAngle,
             right_p2_rollingRadius,
             right_p2_penetration,
@@ -174,6 +189,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p3_length,
             right_p3_width,
             right_p3_yRail,
+            right_p3_xPos,
+            right_p3_yPos,
+            right_p3_zPos,
             right_p3_contactAngle,
             right_p3_rollingRadius,
             right_p3_penetration,
@@ -192,13 +210,23 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
     }
 }
 
-/// Totals of one side: nPatches, then Fx, Fy, Fz, z.
-fn side_vars(right: bool) -> (IntegerVar, [RealVar; 4]) {
+/// Totals of one side: nPatches, then Fx, Fy, Fz, z, Mx, My, Mz, YQ.
+fn side_vars(right: bool) -> (IntegerVar, [RealVar; 8]) {
     use var::*;
     if right {
-        (right_nPatches, [right_Fx, right_Fy, right_Fz, right_z])
+        (
+            right_nPatches,
+            [
+                right_Fx, right_Fy, right_Fz, right_z, right_Mx, right_My, right_Mz, right_YQ,
+            ],
+        )
     } else {
-        (left_nPatches, [left_Fx, left_Fy, left_Fz, left_z])
+        (
+            left_nPatches,
+            [
+                left_Fx, left_Fy, left_Fz, left_z, left_Mx, left_My, left_Mz, left_YQ,
+            ],
+        )
     }
 }
 
@@ -363,7 +391,9 @@ pub fn input(
 fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(), ModelError> {
     let (n, totals) = side_vars(right);
     values.set_integer(n, side.n_patches as i32);
-    let total_values = [side.force[0], side.force[1], side.force[2], side.z];
+    let [fx, fy, fz] = side.force;
+    let [mx, my, mz] = side.moment;
+    let total_values = [fx, fy, fz, side.z, mx, my, mz, side.derailment_quotient];
     for (v, x) in totals.into_iter().zip(total_values) {
         set_output(values, v, x)?;
     }
@@ -379,6 +409,9 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
             p.length,
             p.width,
             p.y_rail,
+            p.position[0],
+            p.position[1],
+            p.position[2],
             p.contact_angle,
             p.rolling_radius,
             p.penetration,
