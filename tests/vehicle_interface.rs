@@ -1,11 +1,13 @@
 //! What a vehicle host reads from the WheelRailContact FMU, through its exported C functions:
 //! the wheels' wrenches about the wheelset centre, the patches' positions and Y/Q
-//! (`docs/conventions.md`, "The wheelset on the track").
+//! (`docs/conventions.md`, "The wheelset on the track"), and their directional derivatives
+//! (`src/fmi/derivative.rs`; HertzContact's too).
 
 mod reliability_support;
 
-use railcontact::models::wheel_rail_contact::INFO;
-use reliability_support::{Fmu, OK};
+use railcontact::fmi::variables::{Causality, Variability};
+use railcontact::models::{hertz_contact, wheel_rail_contact::INFO};
+use reliability_support::{Fmu, ERROR, OK};
 
 const SIDES: [(&str, f64); 2] = [("left", -1.0), ("right", 1.0)];
 const PATCHES: [&str; 3] = ["p1", "p2", "p3"];
@@ -299,5 +301,227 @@ fn derailment_quotient_is_positive_on_the_flanging_wheel() {
     for (side, _) in SIDES {
         let yq = centred.real(&format!("{side}.YQ"));
         assert!(yq.abs() < 0.05, "{side}: {yq}");
+    }
+}
+
+/// The wheel forces, moments and Y/Q of both wheels.
+const WRENCH: [&str; 14] = [
+    "left.Fx", "left.Fy", "left.Fz", "left.Mx", "left.My", "left.Mz", "left.YQ", "right.Fx",
+    "right.Fy", "right.Fz", "right.Mx", "right.My", "right.Mz", "right.YQ",
+];
+
+/// A tread pose in the running range of the creep curves: 2 mm to the right, 0.5 mrad of yaw,
+/// 20 m/s, a lateral velocity of 1 cm/s and 0.03 % of longitudinal creepage from ω.
+fn tread_pose() -> Vec<(&'static str, f64)> {
+    vec![
+        ("y", 2e-3),
+        ("yaw", 5e-4),
+        ("vx", 20.0),
+        ("vy", 0.01),
+        ("omega", 20.0 / 0.46 * (1.0 + 3e-4)),
+    ]
+}
+
+/// An instance of `model` at the tread pose after two steps (the warm start has its history),
+/// and its serialized state.
+fn at_tread(name: &str, model: i32) -> (Fmu, Vec<u8>) {
+    let f = instance(name, &[("normalModel", model)], false, &tread_pose());
+    for k in 0..2 {
+        assert_eq!(f.step(k as f64 * 1e-3, 1e-3), OK, "{:?}", f.errors());
+    }
+    let state = f.serialized_state();
+    (f, state)
+}
+
+/// The host's own central difference of `output` over `input` ± `h`: from the state `base`
+/// (time 2 ms), set the input, step, read, for each side.
+fn host_difference(f: &Fmu, base: &[u8], output: &str, input: &str, h: f64) -> f64 {
+    let x0 = f.real(input);
+    let at = |x: f64| {
+        assert_eq!(f.restore_serialized(base), OK);
+        assert_eq!(f.set_real(input, x), OK);
+        assert_eq!(f.step(2e-3, 1e-3), OK, "{:?}", f.errors());
+        f.real(output)
+    };
+    (at(x0 + h) - at(x0 - h)) / (2.0 * h)
+}
+
+/// `fmi2GetDirectionalDerivative` with a unit seed on one input agrees with the central
+/// differences a host computes by stepping the FMU from the same state with its own, three times
+/// larger, steps — within 2 % (the curvature of the outputs over the host's steps and the load
+/// balance's creep tolerance, 1e−7 of the load, over a force change of ~10 N per step stay far
+/// below it). Hertz and ANALYN (strips).
+#[test]
+fn derivatives_agree_with_a_hosts_central_differences() {
+    let speed: f64 = 20.0;
+    let cases = [
+        ("right.Fy", "y", 3e-5),
+        ("right.Fy", "vy", 3e-6 * speed),
+        ("right.Fx", "omega", 3e-6 * speed / 0.46),
+        ("left.Fx", "yaw", 3e-5),
+        ("right.Mz", "yawRate", 3e-6 * speed),
+        ("left.YQ", "y", 3e-5),
+        ("right.My", "omega", 3e-6 * speed / 0.46),
+        ("right.Fz", "Qright", 3e-5 * 78_500.0),
+    ];
+    for model in [1, 6] {
+        let (f, base) = at_tread(&format!("ddHost{model}"), model);
+        for (output, input, h) in cases {
+            assert_eq!(f.restore_serialized(&base), OK);
+            let (status, d) = f.directional_derivative(&[output], &[(input, 1.0)]);
+            assert_eq!(status, OK, "{:?}", f.errors());
+            let host = host_difference(&f, &base, output, input, h);
+            assert!(
+                (d[0] - host).abs() <= 0.02 * host.abs() && host != 0.0,
+                "model {model}: d {output} / d {input} = {} against the host's {host}",
+                d[0]
+            );
+        }
+    }
+}
+
+/// A derivative call changes nothing: the outputs read after it, and every output of the next
+/// steps, are bit for bit those of an instance that was not asked — for every normal model, with
+/// the call right after a step and after new inputs were set for the next one.
+#[test]
+fn a_derivative_call_leaves_the_state_alone() {
+    let bits = |f: &Fmu| -> Vec<u64> { f.outputs().iter().map(|x| x.to_bits()).collect() };
+    for model in 1..=6 {
+        let asked = instance(
+            &format!("ddAsked{model}"),
+            &[("normalModel", model)],
+            false,
+            &[],
+        );
+        let alone = instance(
+            &format!("ddAlone{model}"),
+            &[("normalModel", model)],
+            false,
+            &[],
+        );
+        for k in 0..5 {
+            let y = 1e-3 * k as f64;
+            for f in [&asked, &alone] {
+                assert_eq!(f.set_real("y", y), OK);
+                assert_eq!(f.set_real("vy", 0.02 * k as f64), OK);
+            }
+            if k % 2 == 1 {
+                // Between new inputs and the step that uses them.
+                let (s, _) = asked.directional_derivative(&WRENCH, &[("y", 1.0), ("vy", 0.3)]);
+                assert_eq!(s, OK, "{:?}", asked.errors());
+            }
+            for f in [&asked, &alone] {
+                assert_eq!(f.step(k as f64 * 1e-3, 1e-3), OK);
+            }
+            if k % 2 == 0 {
+                // Right after a step: the outputs read afterwards are the step's.
+                let before = bits(&asked);
+                let (s, _) = asked.directional_derivative(&WRENCH, &[("omega", 1.0)]);
+                assert_eq!(s, OK, "{:?}", asked.errors());
+                assert_eq!(bits(&asked), before, "model {model} step {k}");
+            }
+            assert_eq!(bits(&asked), bits(&alone), "model {model} step {k}");
+        }
+    }
+}
+
+/// Every wheel force, moment and Y/Q has a finite derivative along every continuous input; the
+/// inputs the modes leave unused (z with prescribed loads, the prescribed creepages with
+/// kinematic ones) give exactly 0, the others move some output; a seed scaled by 2 gives twice
+/// the derivative (the step is scaled with the seed, so the trial inputs are the same); a seed on
+/// two inputs gives the sum of theirs within 2 % (different steps, the outputs linear over them).
+#[test]
+fn every_wrench_output_has_a_derivative_along_every_input() {
+    let (f, base) = at_tread("ddAll", 1);
+    let inputs: Vec<&str> = INFO
+        .variables
+        .iter()
+        .filter(|v| v.causality == Causality::Input && v.variability == Variability::Continuous)
+        .map(|v| v.name)
+        .collect();
+    assert_eq!(inputs.len(), 13, "{inputs:?}");
+    let mut single = std::collections::HashMap::new();
+    for input in &inputs {
+        assert_eq!(f.restore_serialized(&base), OK);
+        let (s, d) = f.directional_derivative(&WRENCH, &[(input, 1.0)]);
+        assert_eq!(s, OK, "{input}: {:?}", f.errors());
+        assert!(d.iter().all(|x| x.is_finite()), "{input}: {d:?}");
+        let unused = matches!(*input, "z" | "xi" | "eta" | "phi");
+        assert_eq!(d.iter().all(|x| *x == 0.0), unused, "{input}: {d:?}");
+        let (_, twice) = f.directional_derivative(&WRENCH, &[(input, 2.0)]);
+        for (a, b) in d.iter().zip(&twice) {
+            assert!((2.0 * a - b).abs() <= 1e-12 * b.abs(), "{input}: {a} {b}");
+        }
+        single.insert(*input, d);
+    }
+    // The balance makes Fz = −Q: ∂Fz/∂Q = −1 on the loaded wheel (to the creep update's
+    // tolerance, 1e−7 of the load over a step of 1e−4 of it) and exactly 0 on the other.
+    let index = |name: &str| WRENCH.iter().position(|n| *n == name).unwrap();
+    let d_load = &single["Qright"];
+    assert!((d_load[index("right.Fz")] + 1.0).abs() < 2e-3, "{d_load:?}");
+    assert_eq!(d_load[index("left.Fz")], 0.0);
+    let (_, both) = f.directional_derivative(&WRENCH, &[("y", 1.0), ("vy", 1.0)]);
+    let fy = index("right.Fy");
+    let sum = single["y"][fy] + single["vy"][fy];
+    assert!(
+        (both[fy] - sum).abs() <= 0.02 * sum.abs(),
+        "{} vs {sum}",
+        both[fy]
+    );
+}
+
+/// Calls that cannot be answered are errors naming the reason: an input as unknown, an output or
+/// a parameter as known, a NaN seed, a call before initialization.
+#[test]
+fn misused_derivative_calls_are_errors() {
+    let (f, _) = at_tread("ddMisuse", 1);
+    for (unknown, known, seed, reason) in [
+        ("y", "y", 1.0, "unknown y is not an output"),
+        (
+            "right.Fy",
+            "right.Fx",
+            1.0,
+            "known right.Fx is not a continuous input",
+        ),
+        ("right.Fy", "mu", 1.0, "known mu is not a continuous input"),
+        ("right.Fy", "y", f64::NAN, "seed of y = NaN is not finite"),
+    ] {
+        let (s, _) = f.directional_derivative(&[unknown], &[(known, seed)]);
+        assert_eq!(s, ERROR);
+        f.assert_error_logged(&["fmi2GetDirectionalDerivative", reason]);
+    }
+    let fresh = Fmu::new(&INFO, "ddFresh");
+    let (s, _) = fresh.directional_derivative(&["right.Fy"], &[("y", 1.0)]);
+    assert_eq!(s, ERROR);
+    fresh.assert_error_logged(&["fmi2GetDirectionalDerivative must not be called"]);
+}
+
+/// HertzContact's derivatives in the creepages at zero creepage are Kalker's linear theory
+/// (docs/conventions.md): ∂Fx/∂ξ = −G a b C11, ∂Fy/∂η = −G a b C22, ∂Fy/∂φ = −G (ab)^1.5 C23,
+/// with the FMU's own a, b and C's. FASTSIM's second-order march (fastsimScheme 1) on the
+/// default grid reproduces that limit within its discretisation error, 1 % allowed.
+#[test]
+fn point_contact_derivatives_are_kalkers_linear_theory() {
+    let f = Fmu::new(&hertz_contact::INFO, "ddHertz");
+    assert_eq!(f.set_integer("fastsimScheme", 1), OK);
+    f.init();
+    for n in ["xi", "eta", "phi"] {
+        assert_eq!(f.set_real(n, 0.0), OK);
+    }
+    assert_eq!(f.step(0.0, 1e-3), OK);
+    let g = f.real("E") / (2.0 * (1.0 + f.real("nu")));
+    let ab = f.real("a") * f.real("b");
+    for (output, input, linear) in [
+        ("Fx", "xi", -g * ab * f.real("C11")),
+        ("Fy", "eta", -g * ab * f.real("C22")),
+        ("Fy", "phi", -g * ab.powf(1.5) * f.real("C23")),
+    ] {
+        let (s, d) = f.directional_derivative(&[output], &[(input, 1.0)]);
+        assert_eq!(s, OK, "{:?}", f.errors());
+        assert!(
+            (d[0] / linear - 1.0).abs() < 0.01,
+            "d {output} / d {input} = {} against {linear}",
+            d[0]
+        );
     }
 }
