@@ -235,6 +235,17 @@ fn unsupported_functions_log_and_fail() {
     unsafe {
         assert_eq!(fmi2CancelStep(f.c), fmi2Status_fmi2Error);
         assert_eq!(
+            fmi2SetRealInputDerivatives(
+                f.c,
+                std::ptr::null(),
+                0,
+                std::ptr::null(),
+                std::ptr::null()
+            ),
+            fmi2Status_fmi2Error
+        );
+        // Directional derivatives are provided: an empty request is answered.
+        assert_eq!(
             fmi2GetDirectionalDerivative(
                 f.c,
                 std::ptr::null(),
@@ -244,7 +255,7 @@ fn unsupported_functions_log_and_fail() {
                 std::ptr::null(),
                 std::ptr::null_mut()
             ),
-            fmi2Status_fmi2Error
+            fmi2Status_fmi2OK
         );
     }
     assert!(messages("unsupported")
@@ -415,6 +426,7 @@ fn generated_model_description_matches_the_table() {
             );
         }
     }
+    assert!(xml.contains("providesDirectionalDerivative=\"true\""));
     assert!(
         !xml.contains("<Derivatives"),
         "stateless CS FMU must not declare Derivatives"

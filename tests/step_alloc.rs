@@ -1,7 +1,8 @@
 //! A step performs no heap allocation after initialisation (issue 7): `Fastsim::solve` (physics
 //! core contract, `src/lib.rs`), the wheelset solver for every normal model and tangential
-//! option, and `fmi2DoStep` of the WheelRailContact FMU through its exported C functions. Counted with a global allocator wrapper; one test in this binary so
-//! that no other test thread allocates meanwhile.
+//! option, and `fmi2DoStep` and `fmi2GetDirectionalDerivative` of the WheelRailContact FMU
+//! through its exported C functions. Counted with a global allocator wrapper; one test in this
+//! binary so that no other test thread allocates meanwhile.
 
 mod common;
 
@@ -112,18 +113,40 @@ fn do_step_does_not_allocate(model: i32) {
         let y = vr("y");
         let fx = vr("right.Fx");
         let h = 1e-3;
+        // Directional derivatives of both forces along y and omega (the first call makes the
+        // scratch values; the later ones allocate nothing either).
+        let unknowns = [fx, vr("right.Fy")];
+        let knowns = [y, vr("omega")];
+        let seed = [1.0, 0.5];
+        let mut derivative = [0.0; 2];
+        let derive = |out: &mut [f64; 2]| {
+            fmi2GetDirectionalDerivative(
+                c,
+                unknowns.as_ptr(),
+                2,
+                knowns.as_ptr(),
+                2,
+                seed.as_ptr(),
+                out.as_mut_ptr(),
+            )
+        };
         assert_eq!(fmi2DoStep(c, 0.0, h, 1), fmi2Status_fmi2OK);
+        assert_eq!(derive(&mut derivative), fmi2Status_fmi2OK);
         let before = ALLOCATIONS.load(Ordering::SeqCst);
         let mut value = 0.0;
         for k in 0..=40 {
             assert_eq!(fmi2SetReal(c, &y, 1, &ramp(k)), fmi2Status_fmi2OK);
             assert_eq!(fmi2DoStep(c, (k + 1) as f64 * h, h, 1), fmi2Status_fmi2OK);
             assert_eq!(fmi2GetReal(c, &fx, 1, &mut value), fmi2Status_fmi2OK);
+            assert_eq!(derive(&mut derivative), fmi2Status_fmi2OK);
         }
         let n = ALLOCATIONS.load(Ordering::SeqCst) - before;
         fmi2FreeInstance(c);
-        assert_eq!(n, 0, "normalModel {model}: {n} allocations in 41 DoSteps");
-        assert!(value.is_finite());
+        assert_eq!(
+            n, 0,
+            "normalModel {model}: {n} allocations in 41 DoSteps and derivative calls"
+        );
+        assert!(value.is_finite() && derivative.iter().all(|d| d.is_finite()));
     }
 }
 

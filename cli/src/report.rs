@@ -21,7 +21,7 @@
 //! figure on stderr.
 
 mod figures;
-mod plot;
+pub mod plot;
 mod reference;
 mod study;
 mod tables;

@@ -594,3 +594,69 @@ fn solve_with_traction_gives_the_tangential_field() {
         "{fx} vs {fx_out}"
     );
 }
+
+/// `conicity`: the JSON's λ(A) at the default amplitudes (the library's numbers, tested against
+/// a cone and the benchmark profiles in `tests/conicity.rs`), the CSV tables and the figure in
+/// `--out`, `--no-roll`, and a bad amplitude named with exit code 1.
+#[test]
+fn conicity_prints_the_table_and_writes_csv_and_figure() {
+    let dir = std::env::temp_dir().join(format!("railcontact-conicity-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().unwrap();
+    let o = run(&["conicity", "--out", out]);
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
+    let doc = parse(&stdout(&o));
+    let table = doc["conicity"].as_array().expect("conicity");
+    let amplitudes: Vec<f64> = table
+        .iter()
+        .map(|c| c["amplitude"].as_f64().unwrap())
+        .collect();
+    assert_eq!(amplitudes, [0.001, 0.002, 0.003, 0.004, 0.005, 0.006]);
+    let at3 = &table[2];
+    let (h, k) = (
+        at3["harmonic"].as_f64().unwrap(),
+        at3["klingel"].as_f64().unwrap(),
+    );
+    assert!((0.1..0.25).contains(&h) && (h - k).abs() < 0.01, "{at3}");
+    // Klingel's formula links the wavelength and λ with the document's r0 and e0.
+    let (r0, e0) = (doc["r0"].as_f64().unwrap(), doc["e0"].as_f64().unwrap());
+    let wavelength = at3["wavelength"].as_f64().unwrap();
+    let formula = 2.0 * std::f64::consts::PI * (r0 * e0 / k).sqrt();
+    assert!((wavelength / formula - 1.0).abs() < 1e-12);
+    let rows = doc["deltaR"].as_array().expect("deltaR");
+    assert_eq!(rows.len(), 281, "±7 mm in 0.05 mm steps");
+    assert_eq!(rows[0]["y"].as_f64(), Some(-0.007));
+    for name in [
+        "conicity.json",
+        "conicity.csv",
+        "delta_r.csv",
+        "conicity.svg",
+        "conicity.png",
+    ] {
+        assert!(dir.join(name).is_file(), "{name}");
+    }
+    let csv = std::fs::read_to_string(dir.join("conicity.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 7);
+    assert!(csv.starts_with("amplitude_m,harmonic,klingel,wavelength_m\n0.001,"));
+    let csv = std::fs::read_to_string(dir.join("delta_r.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 282);
+    let _ = std::fs::remove_dir_all(&dir);
+
+    let o = run(&["conicity", "--no-roll", "--amplitudes", "0.003"]);
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
+    let level = parse(&stdout(&o));
+    assert_eq!(level["roll"], Value::Bool(false));
+    assert!(level["deltaR"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|r| r["roll"] == 0.0));
+
+    let o = run(&["conicity", "--amplitudes", "0.003,0.05"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("amplitude = 0.05 is outside the allowed range (0, 0.02] [m]"),
+        "{}",
+        stderr(&o)
+    );
+}

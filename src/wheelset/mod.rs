@@ -26,6 +26,7 @@
 //! track; the wheelset's angular velocity has no roll-rate term.
 
 pub mod balance;
+pub mod conicity;
 mod hertz_side;
 mod kinematics;
 mod slots;
@@ -61,6 +62,9 @@ pub const MAX_PATCHES: usize = 3;
 /// creepages finite at standstill (a spinning wheel at standstill is then in full sliding, a
 /// wheel at rest has zero creepage). Documented in `docs/conventions.md`.
 pub const V_MIN: f64 = 0.01;
+
+/// Vertical wheel force below which the derailment quotient is 0 (no contact) [N].
+pub const YQ_MIN_LOAD: f64 = 1e-6;
 
 /// Iteration limit of the load balance (safeguarded secant; converges in ~5–10).
 const LOAD_ITERATIONS: usize = 60;
@@ -165,6 +169,9 @@ pub struct PatchResult {
     pub length: f64,
     pub width: f64,
     pub y_rail: f64,
+    /// The reference point (on the wheel, rigid) relative to the wheelset centre, track axes
+    /// (x forward with the yaw lead, y right, z down) [m]; the patch's forces act there.
+    pub position: [f64; 3],
     pub contact_angle: f64,
     pub rolling_radius: f64,
     /// Normal approach [m].
@@ -214,6 +221,13 @@ pub struct SideResult {
     pub groups: [PatchResult; MAX_GROUPS],
     /// Total force of the rail on the wheel in track axes [N].
     pub force: [f64; 3],
+    /// Moment of the rail's forces on the wheel about the wheelset centre, track axes [N·m]:
+    /// Σ over the patches of position × force + the spin moment about the patch normal.
+    pub moment: [f64; 3],
+    /// Derailment quotient Y/Q [-]: Y the lateral force of the rail on the wheel, positive
+    /// towards the track centre (the flanging wheel's guiding force), over Q = −Fz, the
+    /// wheel's vertical force; 0 when Q ≤ [`YQ_MIN_LOAD`] (a lifted wheel).
+    pub derailment_quotient: f64,
     /// The wheel's downward displacement from nominal at which it carries its load [m].
     pub z: f64,
 }
@@ -569,7 +583,9 @@ struct Context<'a> {
 
 /// Stores a completed patch `result` with its `weight` in the next entry of `out.groups` and
 /// adds its weighted force — the tangential part `tangential` (track axes) and the normal force
-/// along −e_z — to `out.force`. Returns its weighted upward force on the wheel [N].
+/// along −e_z — to `out.force`, and its moment about the wheelset centre — that force at the
+/// patch's `position` and the spin moment `mz` about e_z — to `out.moment`. Returns its
+/// weighted upward force on the wheel [N].
 fn store_patch(
     sigma: f64,
     mut result: PatchResult,
@@ -580,6 +596,8 @@ fn store_patch(
     let (_, e_z) = kinematics::contact_axes(sigma, result.contact_angle);
     let total = (tangential - e_z * result.fn_) * weight;
     out.force = (Vector3::from(out.force) + total).into();
+    let moment = Vector3::from(result.position).cross(&total) + e_z * (result.mz * weight);
+    out.moment = (Vector3::from(out.moment) + moment).into();
     result.weight = weight;
     for v in [
         &mut result.fn_,
@@ -595,6 +613,17 @@ fn store_patch(
     out.n_groups += 1;
     // z points down: the upward force is −F_z.
     -total.z
+}
+
+/// Y/Q of the wheel on side `sigma` carrying the force `force` (track axes) [-]
+/// ([`SideResult::derailment_quotient`]): towards the track centre is −σ y.
+pub fn derailment_quotient(sigma: f64, force: [f64; 3]) -> f64 {
+    let (lateral, vertical) = (-sigma * force[1], -force[2]);
+    if vertical > YQ_MIN_LOAD {
+        lateral / vertical
+    } else {
+        0.0
+    }
 }
 
 fn solve_side(
@@ -643,6 +672,7 @@ fn solve_side(
         }
     }
     check_balance(side.name, load, out)?;
+    out.derailment_quotient = derailment_quotient(s, out.force);
     assign_slots(&mut side.slots, out);
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)

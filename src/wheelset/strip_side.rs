@@ -25,7 +25,7 @@
 use nalgebra::Vector3;
 
 use super::balance::{creep_passes, creep_upward};
-use super::kinematics::{creepages_at, tangential_in_axes, NonPlanar};
+use super::kinematics::{creepages_at, point_position, tangential_in_axes, NonPlanar};
 use super::{store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput};
 use crate::error::InputError;
 use crate::geometry::groups::{group_bounds, groups_at, MAX_GROUPS};
@@ -486,6 +486,7 @@ pub(super) fn strip_patch_result(
         length: summary.length,
         width: summary.width,
         y_rail: reference.y_rail,
+        position: point_position(side.sigma, &reference, input.yaw, input.roll).into(),
         contact_angle: gamma,
         rolling_radius: reference.rolling_radius,
         penetration: patch.approach(dz),

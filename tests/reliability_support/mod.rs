@@ -429,6 +429,32 @@ impl Fmu {
         (s, t)
     }
 
+    /// `fmi2GetDirectionalDerivative` of the outputs `unknowns` along the seed `knowns` (input,
+    /// seed): the status and the derivatives (NaN where the call failed).
+    pub fn directional_derivative(
+        &self,
+        unknowns: &[&str],
+        knowns: &[(&str, f64)],
+    ) -> (fmi2Status, Vec<f64>) {
+        let unknown: Vec<u32> = unknowns.iter().map(|n| self.vr(n)).collect();
+        let known: Vec<u32> = knowns.iter().map(|(n, _)| self.vr(n)).collect();
+        let seed: Vec<f64> = knowns.iter().map(|(_, x)| *x).collect();
+        let mut out = vec![f64::NAN; unknowns.len()];
+        // SAFETY: each array holds the count passed with it.
+        let s = unsafe {
+            fmi2GetDirectionalDerivative(
+                self.c,
+                unknown.as_ptr(),
+                unknown.len(),
+                known.as_ptr(),
+                known.len(),
+                seed.as_ptr(),
+                out.as_mut_ptr(),
+            )
+        };
+        (s, out)
+    }
+
     /// The current FMU state, serialized (`fmi2GetFMUstate`, `fmi2SerializedFMUstateSize`,
     /// `fmi2SerializeFMUstate`, `fmi2FreeFMUstate`); asserts every status.
     #[track_caller]
