@@ -48,14 +48,17 @@ pub fn directional_derivative(
     let mut spread = 0.0;
     for side in [-1.0, 1.0] {
         copy_values(base, scratch);
-        let inside = knowns
+        // A known listed twice moves by the sum of its seeds.
+        for (var, seed) in knowns.clone() {
+            scratch.reals[var.slot] += side * t * seed;
+        }
+        if knowns
             .clone()
-            .all(|(var, seed)| var.accepts_real(base.reals[var.slot] + side * t * seed));
-        if inside {
-            for (var, seed) in knowns.clone() {
-                scratch.reals[var.slot] = base.reals[var.slot] + side * t * seed;
-            }
+            .all(|(var, _)| var.accepts_real(scratch.reals[var.slot]))
+        {
             spread += t;
+        } else {
+            copy_values(base, scratch);
         }
         model.probe(scratch)?;
         for (o, var) in out.iter_mut().zip(unknowns.clone()) {
