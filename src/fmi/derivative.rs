@@ -14,6 +14,13 @@
 //! unknowns; the truncation error is O(t²) (O(t) one-sided). A seed of zeros costs nothing.
 //!
 //! The instance's values are never touched: the trial inputs and outputs live in a scratch copy.
+//!
+//! Why differences and not analytical derivatives: the outputs are those of a discrete solution —
+//! a contact search on sampled profiles, a load balance, FASTSIM's march with its adhesion/slip
+//! switch per element — whose exact derivative is that of the whole chain; even in the creepages,
+//! where FASTSIM is linear element by element, the slip elements and the load balance's creep
+//! update make it a nonlinear function. A difference of the element's own solution is consistent
+//! with the outputs the host gets, at a known cost.
 
 use super::model::{Model, ModelError};
 use super::variables::{Values, VarInfo};
