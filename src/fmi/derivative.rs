@@ -14,6 +14,13 @@
 //! unknowns; the truncation error is O(t²) (O(t) one-sided). A seed of zeros costs nothing.
 //!
 //! The instance's values are never touched: the trial inputs and outputs live in a scratch copy.
+//!
+//! Why differences and not analytical derivatives: the outputs are those of a discrete solution —
+//! a contact search on sampled profiles, a load balance, FASTSIM's march with its adhesion/slip
+//! switch per element — whose exact derivative is that of the whole chain; even in the creepages,
+//! where FASTSIM is linear element by element, the slip elements and the load balance's creep
+//! update make it a nonlinear function. A difference of the element's own solution is consistent
+//! with the outputs the host gets, at a known cost.
 
 use super::model::{Model, ModelError};
 use super::variables::{Values, VarInfo};
@@ -48,14 +55,17 @@ pub fn directional_derivative(
     let mut spread = 0.0;
     for side in [-1.0, 1.0] {
         copy_values(base, scratch);
-        let inside = knowns
+        // A known listed twice moves by the sum of its seeds.
+        for (var, seed) in knowns.clone() {
+            scratch.reals[var.slot] += side * t * seed;
+        }
+        if knowns
             .clone()
-            .all(|(var, seed)| var.accepts_real(base.reals[var.slot] + side * t * seed));
-        if inside {
-            for (var, seed) in knowns.clone() {
-                scratch.reals[var.slot] = base.reals[var.slot] + side * t * seed;
-            }
+            .all(|(var, _)| var.accepts_real(scratch.reals[var.slot]))
+        {
             spread += t;
+        } else {
+            copy_values(base, scratch);
         }
         model.probe(scratch)?;
         for (o, var) in out.iter_mut().zip(unknowns.clone()) {

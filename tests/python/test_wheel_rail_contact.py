@@ -543,3 +543,40 @@ def test_tangential_model_out_of_range_is_rejected_and_logged(new_wrc) -> None:
         re.search(r"\btangentialModel = 5 is outside the allowed range integer in \[1, 4\]", m.text)
         for m in slave.errors()
     ), slave.messages
+
+
+def test_directional_derivatives_through_fmpy(new_wrc, wrc_model_description: ModelDescription) -> None:
+    """FMPy reads providesDirectionalDerivative and gets ∂(right.Fy)/∂y, ∂(right.Fy)/∂vy and
+    ∂(right.Fx)/∂omega at a tread pose within 2 % of its own central differences over fmi2DoStep
+    from a saved FMU state (steps 3× the FMU's own, docs/integration.md); the call leaves the
+    outputs and the next step as they were."""
+    assert wrc_model_description.coSimulation.providesDirectionalDerivative
+    pose = {"y": 0.002, "yaw": 5e-4, "vx": 20.0, "vy": 0.01, "omega": 20.0 / 0.46 * (1 + 3e-4)}
+    slave = new_wrc(inputs=pose, stop_time=1.0)
+    slave.run([pose, pose])
+    state = slave.fmu.getFMUstate()
+    t0 = slave.time
+    vr = slave.vars
+    at_save = bits(slave.output_array())
+    for output, knob, h in [("right.Fy", "y", 3e-5), ("right.Fy", "vy", 6e-5), ("right.Fx", "omega", 1.3e-4)]:
+        slave.fmu.setFMUstate(state)
+        slave.time = t0
+        (d,) = slave.fmu.getDirectionalDerivative([vr[output].valueReference], [vr[knob].valueReference], [1.0])
+        assert np.array_equal(bits(slave.output_array()), at_save)
+        sides = []
+        for x in (pose[knob] + h, pose[knob] - h):
+            slave.fmu.setFMUstate(state)
+            slave.time = t0
+            sides.append(slave.run([{knob: x}])[0][slave.output_names.index(output)])
+        host = (sides[0] - sides[1]) / (2 * h)
+        assert host != 0.0 and d == pytest.approx(host, rel=0.02), (output, knob, d, host)
+    # The next step after a derivative call is the one without it.
+    slave.fmu.setFMUstate(state)
+    slave.time = t0
+    plain = slave.run([pose])
+    slave.fmu.setFMUstate(state)
+    slave.time = t0
+    slave.fmu.getDirectionalDerivative([vr["left.Mz"].valueReference], [vr["yawRate"].valueReference], [1.0])
+    assert np.array_equal(bits(slave.run([pose])), bits(plain))
+    slave.fmu.freeFMUstate(state)
+    assert not slave.errors()
