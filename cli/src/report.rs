@@ -637,20 +637,11 @@ impl Document<'_> {
         let _ = writeln!(md, "\n## Model figures\n");
         let _ = writeln!(md, "| model | patches | area mm² | pmax MPa |");
         let _ = writeln!(md, "|---|---|---|---|");
-        for run in &runs.normal {
+        let unsmoothed = runs.unsmoothed.iter().map(|run| (run, ", bSmoothing = 0"));
+        for (run, variant) in runs.normal.iter().map(|run| (run, "")).chain(unsmoothed) {
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.2} | {:.2} |",
-                plot::model_label(run.model),
-                run.patches.len(),
-                run.totals.area * 1e6,
-                run.totals.pmax * 1e-6
-            );
-        }
-        if let Some(run) = &runs.unsmoothed {
-            let _ = writeln!(
-                md,
-                "| {}, bSmoothing = 0 | {} | {:.2} | {:.2} |",
+                "| {}{variant} | {} | {:.2} | {:.2} |",
                 plot::model_label(run.model),
                 run.patches.len(),
                 run.totals.area * 1e6,
@@ -699,13 +690,10 @@ impl Document<'_> {
                 )
             });
             let s = &r.spin;
+            let [fx, fy, mz, slip] = tables::spin_cells(s.fx_n, s.fs_n, s.mz_nm(), s.slip_share());
             let _ = writeln!(
                 md,
-                "| CONTACT (exact) | yes | {:.1} | {:.1} | {:.3} | {:.2} % | {} |",
-                s.fx_n,
-                s.fs_n,
-                s.mn_nmm * 1e-3,
-                100.0 * (1.0 - s.adhesion_fraction),
+                "| CONTACT (exact) | yes | {fx} | {fy} | {mz} | {slip} | {} |",
                 centroid(c)
             );
         }
@@ -715,19 +703,17 @@ impl Document<'_> {
             .filter(|r| r.model != NormalModel::Hertz);
         for run in runs.spin_planar.iter().chain(nonplanar_strips) {
             let t = &run.normal.totals;
+            let [fx, fy, mz, slip] =
+                tables::spin_cells(t.fx, t.fy, t.mz, 100.0 * (1.0 - t.adhesion));
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.1} | {:.1} | {:.3} | {:.2} % | {} |",
+                "| {} | {} | {fx} | {fy} | {mz} | {slip} | {} |",
                 plot::model_label(run.model),
                 if run.planar || run.model == NormalModel::Hertz {
                     "yes"
                 } else {
                     "no"
                 },
-                t.fx,
-                t.fy,
-                t.mz,
-                100.0 * (1.0 - t.adhesion),
                 centroid(study::slip_centroid(&run.cells))
             );
         }

@@ -130,6 +130,18 @@ pub struct SpinSummary {
     pub adhesion_fraction: f64,
 }
 
+impl SpinSummary {
+    /// The spin moment [N·m].
+    pub fn mz_nm(&self) -> f64 {
+        self.mn_nmm * 1e-3
+    }
+
+    /// The slipping share of the patch [%].
+    pub fn slip_share(&self) -> f64 {
+        100.0 * (1.0 - self.adhesion_fraction)
+    }
+}
+
 /// One element of `pure_spin_traction_grid.csv`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RefTraction {
