@@ -27,8 +27,8 @@ mod study;
 mod tables;
 
 use crate::{workspace_root, Failure};
-use figures::{Creep, Outlines, Pressure, ShiftRuns, Shifts, Spin};
-use plot::{render, Figure};
+use figures::{Creep, Outlines, Pressure, ReportFigure, ShiftRuns, Shifts, Spin};
+use plot::render;
 use railcontact::fmi::variables::Values;
 use railcontact::models::wheel_rail_contact::{generated::var, INFO};
 use railcontact::normal::NormalModel;
@@ -179,8 +179,8 @@ struct Output<'a> {
 
 impl Output<'_> {
     /// Writes `figure` and prints its progress line ("[k/n] path … seconds since `started`").
-    fn figure<F: Figure>(&mut self, figure: &F, started: Instant) -> Result<(), Failure> {
-        let paths = render(figure, self.dir).map_err(Failure::Error)?;
+    fn figure(&mut self, figure: ReportFigure, started: Instant) -> Result<(), Failure> {
+        let paths = render(&figure, self.dir).map_err(Failure::Error)?;
         eprintln!(
             "railcontact report: [{}/{FIGURES}] {} (.svg, .png) in {:.2} s",
             self.files.len() + 1,
@@ -308,7 +308,7 @@ fn normal_figures(
         reference: out.reference,
         setup: out.setup.clone(),
     };
-    out.figure(&outlines, t)?;
+    out.figure(ReportFigure::Outlines(outlines), t)?;
 
     let t = Instant::now();
     let unsmoothed = if study.b_smoothing() > 0.0 {
@@ -326,7 +326,7 @@ fn normal_figures(
         reference: out.reference,
         setup: out.setup.clone(),
     };
-    out.figure(&pressure, t)?;
+    out.figure(ReportFigure::Pressure(pressure), t)?;
     Ok((normal, unsmoothed))
 }
 
@@ -359,7 +359,7 @@ fn spin_figures(study: &Study, out: &mut Output) -> Result<(Vec<SpinRun>, Vec<Sp
             scale_mpa,
             axes: axes.clone(),
         };
-        out.figure(&figure, t)?;
+        out.figure(ReportFigure::Spin(figure), t)?;
         t = Instant::now();
     }
     Ok((planar, nonplanar))
@@ -391,7 +391,7 @@ fn shift_figure(study: &Study, out: &mut Output) -> Result<Vec<ShiftRuns>, Failu
             .unwrap_or_default()
             .to_string(),
     };
-    out.figure(&figure, t)?;
+    out.figure(ReportFigure::Shifts(figure), t)?;
     Ok(shifts)
 }
 
@@ -439,7 +439,7 @@ fn creep_figure(
         reference: out.reference,
         setup: out.setup.clone(),
     };
-    out.figure(&figure, t)?;
+    out.figure(ReportFigure::Creep(figure), t)?;
     Ok((own, others))
 }
 
@@ -637,20 +637,11 @@ impl Document<'_> {
         let _ = writeln!(md, "\n## Model figures\n");
         let _ = writeln!(md, "| model | patches | area mm² | pmax MPa |");
         let _ = writeln!(md, "|---|---|---|---|");
-        for run in &runs.normal {
+        let unsmoothed = runs.unsmoothed.iter().map(|run| (run, ", bSmoothing = 0"));
+        for (run, variant) in runs.normal.iter().map(|run| (run, "")).chain(unsmoothed) {
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.2} | {:.2} |",
-                plot::model_label(run.model),
-                run.patches.len(),
-                run.totals.area * 1e6,
-                run.totals.pmax * 1e-6
-            );
-        }
-        if let Some(run) = &runs.unsmoothed {
-            let _ = writeln!(
-                md,
-                "| {}, bSmoothing = 0 | {} | {:.2} | {:.2} |",
+                "| {}{variant} | {} | {:.2} | {:.2} |",
                 plot::model_label(run.model),
                 run.patches.len(),
                 run.totals.area * 1e6,
@@ -699,13 +690,10 @@ impl Document<'_> {
                 )
             });
             let s = &r.spin;
+            let [fx, fy, mz, slip] = tables::spin_cells(s.fx_n, s.fs_n, s.mz_nm(), s.slip_share());
             let _ = writeln!(
                 md,
-                "| CONTACT (exact) | yes | {:.1} | {:.1} | {:.3} | {:.2} % | {} |",
-                s.fx_n,
-                s.fs_n,
-                s.mn_nmm * 1e-3,
-                100.0 * (1.0 - s.adhesion_fraction),
+                "| CONTACT (exact) | yes | {fx} | {fy} | {mz} | {slip} | {} |",
                 centroid(c)
             );
         }
@@ -715,19 +703,17 @@ impl Document<'_> {
             .filter(|r| r.model != NormalModel::Hertz);
         for run in runs.spin_planar.iter().chain(nonplanar_strips) {
             let t = &run.normal.totals;
+            let [fx, fy, mz, slip] =
+                tables::spin_cells(t.fx, t.fy, t.mz, 100.0 * (1.0 - t.adhesion));
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.1} | {:.1} | {:.3} | {:.2} % | {} |",
+                "| {} | {} | {fx} | {fy} | {mz} | {slip} | {} |",
                 plot::model_label(run.model),
                 if run.planar || run.model == NormalModel::Hertz {
                     "yes"
                 } else {
                     "no"
                 },
-                t.fx,
-                t.fy,
-                t.mz,
-                100.0 * (1.0 - t.adhesion),
                 centroid(study::slip_centroid(&run.cells))
             );
         }
