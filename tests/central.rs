@@ -1,5 +1,5 @@
-//! The non-elliptic normal models on the seed study's central case against Kalker's exact theory
-//! (CONTACT v25.1; data in `tests/data/reference/central/`, see its README).
+//! The non-elliptic normal models on the central case (tests/data/README.md) against Kalker's exact
+//! theory (CONTACT v25.1; data in `tests/data/reference/central/`, see its README).
 //!
 //! Set-up (as the reference): right wheel, benchmark profiles `MBench_S1002_v3.prw` on
 //! `MBench_UIC60_v3.prr` (rail already inclined 1:40, so `rail_inclination = 0`), gauge 1435 mm at
@@ -154,9 +154,9 @@ fn central_case_against_the_exact_theory() {
         errors[&NormalModel::StripesAB],
         errors[&NormalModel::Analyn]
     );
-    // The seed: the virtual-penetration models' patches are too large — Linder's and
-    // Kik–Piotrowski's are both larger than either STRIPES variant's, and both well above the
-    // exact area (they are within 2 % of each other, Linder's lateral semi-axis being the
+    // As Sichani et al. (2014) found: the virtual-penetration models' patches are too large —
+    // Linder's and Kik–Piotrowski's are both larger than either STRIPES variant's, and both well
+    // above the exact area (they are within 2 % of each other, Linder's lateral semi-axis being the
     // virtual ellipse's from the margin's moments).
     for vp in [NormalModel::Linder, NormalModel::KikPiotrowski] {
         for other in [NormalModel::StripesB, NormalModel::StripesAB] {

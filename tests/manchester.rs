@@ -1,8 +1,9 @@
 //! Wheelset contact geometry against the Manchester contact benchmark, case, solved by
-//! CONTACT v25.1 (physics.md §8.5; data in `tests/data/reference/manchester/`).
+//! CONTACT v25.1 (Shackleton & Iwnicki 2008; set-up and data in `tests/data/README.md`,
+//! `tests/data/reference/manchester/`).
 //!
-//! Set-up (physics.md §8.5, as in the `.inp` files): benchmark profiles `MBench_S1002_v3.prw` on
-//! `MBench_UIC60_v3.prr` (rail already canted 1:40, so `rail_inclination = 0`), gauge 1435 mm at
+//! Set-up (tests/data/README.md, as in the `.inp` files): benchmark profiles `MBench_S1002_v3.prw`
+//! on `MBench_UIC60_v3.prr` (rail already canted 1:40, so `rail_inclination = 0`), gauge 1435 mm at
 //! 14 mm, flange-back distance 1360 mm, nominal radius 460 mm, G = 82 000 N/mm² and ν = 0.28
 //! (E = 2G(1 + ν)), μ = 0.3, 10 kN prescribed per wheel, vx = 2 m/s. The 21 states (lateral shift
 //! 0…10 mm, yaw 2.4 mrad per mm, CONTACT's pre-iterated roll and pitch velocity) are read from

@@ -1323,7 +1323,8 @@ fn instantiation_is_refused_with_a_message() {
             messages_of(label)
         );
     }
-    // No resource location: the built-in profiles still work (fmi-notes.md §7).
+    // No resource location: the built-in profiles still work (docs/integration.md, "Bundled
+    // profiles and `resourceLocation`").
     let f = Fmu::try_new(wrc(), "noResources", wrc().guid, None).expect("instantiated");
     f.init();
     assert_eq!(f.step(0.0, H), OK);

@@ -1,5 +1,5 @@
-//! Tangential contact on the seed's central case against Kalker's exact theory (CONTACT v25.1;
-//! `tests/data/reference/central/`): creep-force curves and pure spin.
+//! Tangential contact on the central case (tests/data/README.md) against Kalker's exact theory
+//! (CONTACT v25.1; `tests/data/reference/central/`): creep-force curves and pure spin.
 //!
 //! Set-up as `tests/central.rs` (right wheel, benchmark profiles, 78.5 kN, E = 210 GPa, ν = 0.28,
 //! μ = 0.3), with the creepages prescribed at the patch (CONTACT's own prescribed creepages:

@@ -10,7 +10,7 @@
 //!    kept): its reference point is the volume-weighted centroid of the interpenetration
 //!    (CONTACT's contact reference point), which gives `yRail`, the contact angle and the rolling
 //!    radius; its Hertz ellipse uses the curvatures and the normal approach δ_v·cos γ at the
-//!    region's deepest point (multi-Hertzian: physics.md §2, §5.1);
+//!    region's deepest point (multi-Hertzian: docs/theory.md §2, §7.8);
 //! 4. creepages at the reference point from the wheelset's rigid-body motion (body 1 = wheel):
 //!    v = v_C + Ω × (P − C), ξ = v·e_x/V, η = v·e_y/V, φ = Ω·e_z/V with V = max(|vx|, V_MIN), or
 //!    prescribed;
@@ -87,7 +87,7 @@ pub struct WheelsetSettings {
     pub tangential: TangentialModel,
     /// Planar treatment of strip patches: one contact angle and one spin for the whole patch
     /// (as the half-space theory assumes). `false`: each strip its own angle, rolling radius
-    /// and creepages (physics.md §5.9).
+    /// and creepages (docs/theory.md §5.8).
     pub planar_patch: bool,
 }
 

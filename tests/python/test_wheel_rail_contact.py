@@ -4,7 +4,7 @@ What is checked, in file order:
 
 1. packaging: `fmpy validate`, exactly the 34 `fmi2*` exports;
 2. the default experiment through `fmpy.simulate_fmu` with a lateral-shift input (built-in S1002 on
-   UIC60 at 1:40, 78.5 kN per wheel) and the Manchester benchmark (physics.md §8.5) through the
+   UIC60 at 1:40, 78.5 kN per wheel) and the Manchester benchmark (tests/data/README.md) through the
    FMU with the benchmark profile files;
 3. failures: a malformed profile file and an unknown built-in profile name fail initialization
    with fmi2Error and a log message; a pose off the rail makes fmi2DoStep return fmi2Discard with
@@ -432,7 +432,7 @@ NORMAL_MODELS = {2: "Linder", 3: "Kik-Piotrowski", 4: "STRIPES-B", 5: "STRIPES-A
 
 
 def _central_params(model: int) -> dict[str, float | int | str]:
-    """The seed's central case (reference/central/README): benchmark profiles, E = 210 GPa."""
+    """The central case (tests/data/README.md): benchmark profiles, E = 210 GPa."""
     return {
         "wheelProfile": str(data_file("profiles/MBench_S1002_v3.prw")),
         "railProfile": str(data_file("profiles/MBench_UIC60_v3.prr")),
