@@ -142,7 +142,7 @@ fn central_case_against_the_exact_theory() {
         areas.insert(model, area);
         errors.insert(model, (area / r.area - 1.0, pmax / r.pmax - 1.0));
     }
-    // The acceptance: the better of STRIPES-A&B and ANALYN within ±10 % in area and
+    // Required: the better of STRIPES-A&B and ANALYN within ±10 % in area and
     // ±15 % in pmax of the exact theory.
     let within = |m: NormalModel| {
         let (ea, ep) = errors[&m];
@@ -175,7 +175,7 @@ fn central_case_against_the_exact_theory() {
 
 #[test]
 fn every_model_is_finite_over_lateral_shifts() {
-    // The acceptance: finite, positive area and pmax on shifts −1…+6 mm at 78.5 kN.
+    // Required: finite, positive area and pmax on shifts −1…+6 mm at 78.5 kN.
     for model in NormalModel::ALL {
         let mut ws = wheelset(model);
         let mut y = -1.0;

@@ -1,4 +1,4 @@
-//! Issue 7, item 5: the default discretisation (24 strips per patch, FASTSIM 24 elements along x
+//! Accuracy of the defaults: the default discretisation (24 strips per patch, FASTSIM 24 elements along x
 //! and 20 strips across an ellipse, second-order march) keeps the tangential forces within 1 % of
 //! the same model's converged result: the model at 200 strips × 200 elements (200 × 200 on an
 //! ellipse), where the second-order march's own error is ~(1/200)² and the strip count's below
@@ -17,7 +17,7 @@ use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::{Creepage, FastsimSettings};
 use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
 
-/// Tolerance of the issue: 1 % of the converged force.
+/// Required: within 1 % of the converged force.
 const TOLERANCE: f64 = 0.01;
 /// Discretisation of the converged reference (strips per patch, elements along and across).
 const FINE: usize = 200;

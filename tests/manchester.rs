@@ -21,10 +21,10 @@
 //!   the data by [`roll_sign_matches_contact`]; pitch velocity: ω = −`VPITCH` (CONTACT's forward
 //!   rolling is a negative rotation about its y axis).
 //!
-//! Acceptance (the issue's wording): "contact angle within 0.01 rad and the contact's lateral
-//! position on the rail within 1 mm for every tread state; the right wheel's jumps to flange-root
-//! contact (between 4.5 and 5.0 mm) and to the flange (between 6.0 and 6.5 mm) at the same
-//! lateral shifts as the reference".
+//! Required: contact angle within 0.01 rad and the contact's lateral position on the rail within
+//! 1 mm for every tread state; the right wheel's jumps to flange-root contact (between 4.5 and
+//! 5.0 mm) and to the flange (between 6.0 and 6.5 mm) at the same lateral shifts as the
+//! reference.
 //! * **Tread state**: a state whose *reference* contact angle is below [`TREAD_MAX_ANGLE`] = 0.2
 //!   rad in magnitude (right wheel 0…4.5 mm, left wheel all 21 states; the reference's next
 //!   larger angle is 0.29 rad at the flange root).
@@ -59,7 +59,7 @@ const G: f64 = 82e9;
 const NU: f64 = 0.28;
 const MU: f64 = 0.3;
 
-/// Acceptance tolerances (the issue's; not to be loosened).
+/// Required tolerances (not to be loosened).
 const ANGLE_TOL: f64 = 0.01; // rad
 const POSITION_TOL_MM: f64 = 1.0;
 /// Reference contact angles below this magnitude are tread states [rad].

@@ -1,4 +1,4 @@
-//! A step performs no heap allocation after initialisation (issue 7): `Fastsim::solve` (physics
+//! A step performs no heap allocation after initialisation: `Fastsim::solve` (physics
 //! core contract, `src/lib.rs`), the wheelset solver for every normal model and tangential
 //! option, and `fmi2DoStep` of the WheelRailContact FMU through its exported C functions. Counted with a global allocator wrapper; one test in this binary so
 //! that no other test thread allocates meanwhile.

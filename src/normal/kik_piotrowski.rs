@@ -56,7 +56,7 @@
 //!   R ≈ (π/2 − 4/e)c²/y + (8/(3e³) − π/16)c⁴/y³ in closed form. Relative error ≤ 2.4e−9 against
 //!   a reference quadrature for Y/c from 0.01 to 1e4 (tested), so also when a strip is much wider
 //!   than the patch is long.
-//! * **Tabulated** (speed, issue 7): R and its integral are scale-free, R(c, y) = c R̂(y/c) and
+//! * **Tabulated** (for speed): R and its integral are scale-free, R(c, y) = c R̂(y/c) and
 //!   ∫₀^Y R dy = c² Ĝ(Y/c), so the solve interpolates two one-dimensional tables in ln(y/c)
 //!   built once per instance from the direct functions above (`RemainderTable`; 1e−11 from the
 //!   reference quadrature, where the direct rule is 2.4e−9) instead of an AGM per strip and ~30
