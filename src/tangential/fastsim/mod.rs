@@ -45,7 +45,7 @@
 //! steps only from the strip's leading edge √(1 − Y²)·a to its centre, and the spin term of every
 //! step sits at the step's midpoint, so in adhesion the element-centre tractions are FASTSIM's
 //! continuous ones. Force error against a 800² grid (same scheme), CONTACT's scheme in brackets:
-//! oracle case 1.2 % at 20² (1.2 % at 40²; table in docs/performance.md), pure ξ in
+//! oracle case 1.2 % at 20² (1.2 % at 40²; docs/performance.md), pure ξ in
 //! partial slip 0.25 % at 20² (3.3 % at 40²). CONTACT's scheme stays the library default
 //! ([`MarchScheme::Contact`]) and the `HertzContact` FMU's, whose oracle is CONTACT's printout.
 //!
