@@ -1,4 +1,4 @@
-//! `fmi2DoStep` through the C ABI (issue 7): a Rust host loads the packed WheelRailContact FMU's
+//! `fmi2DoStep` through the C ABI: a Rust host loads the packed WheelRailContact FMU's
 //! shared library (`libloading`), instantiates it as any FMI host does, sets the normal model and
 //! 78.5 kN per wheel, and times `fmi2DoStep` of 1 ms with constant inputs (the central case) and
 //! with the lateral shift following 3 mm sin 2πt (set before each step). Compare with

@@ -1,5 +1,5 @@
-//! Soak test of the `WheelRailContact` FMU through its exported C functions (issue 8;
-//! docs/reliability.md): a random walk of the wheelset pose (lateral shift, yaw, roll, both wheel
+//! Soak test of the `WheelRailContact` FMU through its exported C functions
+//! (docs/reliability.md): a random walk of the wheelset pose (lateral shift, yaw, roll, both wheel
 //! loads, forward and lateral speed, yaw rate, axle speed) from a fixed seed, one `fmi2SetReal`,
 //! `fmi2DoStep` and `fmi2GetReal`/`fmi2GetInteger` of every output per step, with every 1 000
 //! steps an FMU state taken, serialized and freed. Checked: every status OK, no output NaN or

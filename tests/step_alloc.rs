@@ -1,4 +1,4 @@
-//! A step performs no heap allocation after initialisation (issue 7): `Fastsim::solve` (physics
+//! A step performs no heap allocation after initialisation: `Fastsim::solve` (physics
 //! core contract, `src/lib.rs`), the wheelset solver for every normal model and tangential
 //! option, and `fmi2DoStep` and `fmi2GetDirectionalDerivative` of the WheelRailContact FMU
 //! through its exported C functions. Counted with a global allocator wrapper; one test in this

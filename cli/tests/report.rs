@@ -184,7 +184,7 @@ fn material() -> Material {
     }
 }
 
-/// The benchmark wheelset solved as the report's seed case (as `tests/central.rs` and
+/// The benchmark wheelset solved as the report's central case (as `tests/central.rs` and
 /// `tests/tangential.rs` solve it).
 fn solve(
     model: NormalModel,
@@ -251,7 +251,7 @@ fn report_reproduces_the_figures_and_the_error_table() {
         );
     }
     assert!(md.contains("Errors against the exact theory") && md.contains("| 6 ANALYN |"));
-    assert!(md.contains("MBench_S1002_v3.prw"), "the seed's profiles");
+    assert!(md.contains("MBench_S1002_v3.prw"), "the benchmark files");
 
     let table = read_table(&out.join("errors.csv"));
     let key = |case: &str, model: &str, t: &str, planar: &str, q: &str| {

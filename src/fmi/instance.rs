@@ -149,7 +149,8 @@ fn checksum(bytes: &[u8]) -> u64 {
     })
 }
 
-/// Tolerance for comparing communication points (fmi-notes.md §3, §10).
+/// Tolerance for comparing communication points (docs/integration.md, "Communication points and
+/// step sizes").
 const TIME_TOLERANCE: f64 = 1e-9;
 
 /// One instance of a model.

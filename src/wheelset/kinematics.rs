@@ -114,9 +114,9 @@ pub(super) fn tangential_in_axes(
     Vector3::new(fx, fy * e_y.y, fy * e_y.z)
 }
 
-/// The kinematics of a non-planar patch (docs/theory.md): the rigid-body motion the strips'
-/// creepages come from — the wheelset's own, or with prescribed creepages (which hold at the
-/// reference point) pure rolling at the nominal wheel radius — and its creepages at the patch's
+/// The kinematics of a non-planar patch (docs/theory.md §5.8, §8.1): the rigid-body motion the
+/// strips' creepages come from — the wheelset's own, or with prescribed creepages (which hold at
+/// the reference point) pure rolling at the nominal wheel radius — and its creepages at the patch's
 /// reference point.
 pub(super) struct NonPlanar {
     kinematics: WheelsetInput,

@@ -1,20 +1,28 @@
-//! One wheelset on straight track: contact search on both wheels, multi-Hertzian normal contact,
-//! creepages from the wheelset kinematics, FASTSIM per patch, and the forces in track axes.
+//! One wheelset on straight track: contact search on both wheels, normal contact (multi-Hertzian
+//! or a strip model), creepages from the wheelset kinematics, FASTSIM or FaStrip per patch, and
+//! the forces in track axes (docs/theory.md §7.6–§8.4).
 //!
 //! Per wheel (in its side frame, see [`crate::geometry::track`]):
-//! 1. rigid contact search ([`crate::geometry::search`]) gives the gap function and its minima;
-//! 2. the wheel's vertical position is either prescribed (`z`) or found so that the vertical force
+//! 1. rigid contact search ([`crate::geometry::search`]) gives the gap function, its minima and
+//!    the ridges between them;
+//! 2. the minima form patch groups with continuous weights ([`crate::geometry::groups`],
+//!    docs/theory.md §7.7), at most [`MAX_PATCHES`] shown in the output slots (`slots`);
+//! 3. `normalModel` 1 (`hertz_side`): each group is one Hertz ellipse, with its reference point
+//!    at the centroid of the interpenetration above 0.8 of the group's depth (where `yRail`, the
+//!    contact angle and the rolling radius are taken) and its lateral curvature from the spread of
+//!    the interpenetration (multi-Hertzian: docs/theory.md §2, §7.8); `normalModel` 2–6
+//!    ([`strip_side`]): strips on each group's contact plane, laid out once per step, solved by
+//!    the strip model (docs/theory.md §5, §7.9);
+//! 4. the wheel's vertical position is either prescribed (`z`) or found so that the vertical force
 //!    of the rail on the wheel balances the prescribed wheel load Q — including the vertical
-//!    components of the creep forces, which matter in flange contact (N cos γ + σ Fy sin γ = Q);
-//! 3. each connected interpenetration region is one patch (at most [`MAX_PATCHES`], the deepest
-//!    kept): its reference point is the volume-weighted centroid of the interpenetration
-//!    (CONTACT's contact reference point), which gives `yRail`, the contact angle and the rolling
-//!    radius; its Hertz ellipse uses the curvatures and the normal approach δ_v·cos γ at the
-//!    region's deepest point (multi-Hertzian: physics.md §2, §5.1);
-//! 4. creepages at the reference point from the wheelset's rigid-body motion (body 1 = wheel):
+//!    components of the creep forces, which matter in flange contact (N cos γ + σ Fy sin γ = Q),
+//!    warm-started from the previous step ([`balance`], docs/theory.md §8.3);
+//! 5. creepages at the reference point from the wheelset's rigid-body motion (body 1 = wheel):
 //!    v = v_C + Ω × (P − C), ξ = v·e_x/V, η = v·e_y/V, φ = Ω·e_z/V with V = max(|vx|, V_MIN), or
-//!    prescribed;
-//! 5. FASTSIM per patch (the patch is planar; per-strip spin is the non-elliptic issue's work).
+//!    prescribed (`kinematics`, docs/theory.md §8.1); on a non-planar strip patch every strip
+//!    has its own contact angle, spin and rolling radius (docs/theory.md §5.8);
+//! 6. the tangential problem per patch: FASTSIM on a Hertz ellipse, the `tangentialModel`'s
+//!    solver on a strip patch (docs/theory.md §4, §6).
 //!
 //! Contact axes of a patch, in track axes (x forward, y right, z down), for both wheels
 //! right-handed with e_y pointing to the right: e_x = (1, 0, 0), e_z = (0, σ sin γ, cos γ) (from the
@@ -91,7 +99,7 @@ pub struct WheelsetSettings {
     pub tangential: TangentialModel,
     /// Planar treatment of strip patches: one contact angle and one spin for the whole patch
     /// (as the half-space theory assumes). `false`: each strip its own angle, rolling radius
-    /// and creepages (physics.md §5.9).
+    /// and creepages (docs/theory.md §5.8).
     pub planar_patch: bool,
 }
 

@@ -1,5 +1,6 @@
 //! Non-elliptic patches of one wheel: strips on each patch's contact plane, a strip normal model
-//! per patch, and the wheel's vertical position for a prescribed load (physics.md §5.1–§5.2).
+//! per patch, and the wheel's vertical position for a prescribed load (docs/theory.md §5.1–§5.2,
+//! §7.9).
 //!
 //! For a wheel lowered by dz from its nominal height:
 //! 1. **Layout** at the level L = touch + [`LAYOUT_FACTOR`] × (the multi-Hertzian approach): the

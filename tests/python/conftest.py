@@ -1,4 +1,4 @@
-"""Session fixtures and shared helpers for the host tests of the packed FMUs.
+"""Fixtures (one per test run) and shared helpers for the host tests of the packed FMUs.
 
 The FMUs are taken from ``$RAILCONTACT_FMU_DIR/<Model>.fmu`` when that variable is set, else
 from ``$CARGO_TARGET_DIR/fmu/<Model>.fmu`` when that one is (relative to the working directory,
@@ -121,7 +121,7 @@ def model_description(fmu_path: Path) -> ModelDescription:
 
 @pytest.fixture(scope="session")
 def unzipdir(fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The FMU extracted once per session; every FMU2Slave of the session loads it from here."""
+    """The FMU extracted once per test run; every FMU2Slave of the run loads it from here."""
     target = tmp_path_factory.mktemp("HertzContact_unzipped")
     return Path(fmpy.extract(str(fmu_path), unzipdir=str(target)))
 

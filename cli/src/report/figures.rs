@@ -3,12 +3,12 @@
 //! alone):
 //!
 //! * [`Outlines`] — patch outlines (leading and trailing edge per strip, x against yRail) of every
-//!   normal model over CONTACT's (the seed's Fig. 2);
-//! * [`Pressure`] — the maximum pressure per strip along yRail (the seed's Fig. 3);
+//!   normal model over CONTACT's (as Sichani et al. 2014, Fig. 2);
+//! * [`Pressure`] — the maximum pressure per strip along yRail (as Sichani et al. 2014, Fig. 3);
 //! * [`Spin`] — |tangential traction| and slip elements in pure spin, one panel per model, planar
-//!   or non-planar patches (the seed's Fig. 4);
+//!   or non-planar patches (as Sichani et al. 2014, Fig. 4);
 //! * [`Shifts`] — outline, strip pressure and lateral curvature B of both STRIPES variants at
-//!   several lateral shifts (the seed's Fig. 5);
+//!   several lateral shifts (as Sichani et al. 2014, Fig. 5);
 //! * [`Creep`] — creep-force curves Fx(ξ), Fy(η) over μN per normal model and tangential option.
 //!
 //! Lateral axis: the right rail's `yRail` in mm, positive towards the field side (CONTACT's

@@ -1,4 +1,4 @@
-//! The CONTACT reference solutions of the seed's central case, read from
+//! The CONTACT reference solutions of the central case (tests/data/README.md), read from
 //! `<reference>/central/*.csv` (described in the reference directory's README.md).
 //!
 //! Units stay CONTACT's (mm, N, N·mm, MPa, 1/mm) in the file-level structs; the names say which.
