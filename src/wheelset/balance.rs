@@ -16,10 +16,23 @@ pub const LOAD_TOLERANCE: f64 = 1e-9;
 /// Largest approach tried while bracketing [m] (5 cm is far beyond any elastic contact).
 const MAX_APPROACH: f64 = 0.05;
 
-/// Relative overshoot of the Hertzian predictor while bracketing: 2 % in the approach, so a
-/// force law a little stiffer or softer than δ^{3/2} (strip models, a second patch) is still
-/// bracketed in one trial.
+/// Largest relative overshoot of the Hertzian predictor while bracketing: 2 % in the approach,
+/// so a force law a little stiffer or softer than δ^{3/2} (strip models, a second patch) is
+/// still bracketed in one trial.
 const PREDICTOR_MARGIN: f64 = 0.02;
+
+/// The overshoot as a fraction of the predictor's own correction, where that is smaller than
+/// [`PREDICTOR_MARGIN`]: a first trial close to the root (a warm start on a moving pose: ~1e−5
+/// of the approach) is followed by a second one just beyond the root, not 2 % beyond it, so the
+/// bracket the regula falsi starts from is as tight as the prediction (a force law whose local
+/// exponent differs from 3/2 by up to half of it is still bracketed in one trial).
+const PREDICTOR_OVERSHOOT: f64 = 0.5;
+
+/// The relative overshoot of a predicted approach ratio `ratio` (the Hertzian law's root over
+/// the last trial) [-].
+fn predictor_margin(ratio: f64) -> f64 {
+    (PREDICTOR_OVERSHOOT * (ratio - 1.0).abs()).min(PREDICTOR_MARGIN)
+}
 
 /// Bracketing trials (doubling from 1e−9 m reaches MAX_APPROACH in 26).
 const BRACKET_TRIALS: usize = 64;
@@ -96,7 +109,8 @@ fn balance_in<E>(
                 break;
             }
             // Too deep: predict the root from below.
-            let ratio = (load / force).powf(2.0 / 3.0) * (1.0 - PREDICTOR_MARGIN);
+            let hertz = (load / force).powf(2.0 / 3.0);
+            let ratio = hertz * (1.0 - predictor_margin(hertz));
             let next = approach * ratio.max(0.5);
             if touch + next <= lo {
                 break;
@@ -111,11 +125,12 @@ fn balance_in<E>(
                 break;
             }
             let ratio = if force > 0.0 {
-                (load / force).powf(2.0 / 3.0) * (1.0 + PREDICTOR_MARGIN)
+                let hertz = (load / force).powf(2.0 / 3.0);
+                hertz * (1.0 + predictor_margin(hertz))
             } else {
                 2.0
             };
-            approach *= ratio.clamp(1.0 + PREDICTOR_MARGIN, 2.0);
+            approach *= ratio.min(2.0);
         }
     }
     if f_hi.is_nan() || f_hi <= 0.0 {
