@@ -44,6 +44,11 @@ pub struct Balanced {
     pub lowering: f64,
     /// Whether `lowering` was the last point evaluated (so the caller's state belongs to it).
     pub evaluated: bool,
+    /// Secant slope of the force through the last two points evaluated, per unit of the
+    /// iteration's variable (u = δ^{3/2} for [`balance_hertzian`], else dz) [N/m^{3/2}] or
+    /// [N/m]; NaN where fewer than two points were evaluated. A good first step of the next
+    /// balance of the same wheel under a slightly different load.
+    pub slope: f64,
 }
 
 /// Finds the lowering dz at which `residual(dz)` = F(dz) − load [N] vanishes (to
@@ -63,43 +68,109 @@ pub fn balance<E>(
     iterations: usize,
     residual: impl FnMut(f64) -> Result<f64, E>,
 ) -> Result<Balanced, E> {
-    balance_in(touch, first_approach, load, iterations, false, residual)
+    balance_in(
+        touch,
+        first_approach,
+        load,
+        iterations,
+        false,
+        None,
+        residual,
+    )
 }
 
 /// [`balance`] for a force that grows like a Hertz patch's, F ∝ δ^{3/2} (the multi-Hertzian
 /// wheel): the regula falsi runs in u = δ^{3/2} (δ = dz − touch), where such a force is linear,
 /// so one step solves a single patch and a few steps several (the strip models' forces are
-/// further from that law: with them it needs more steps than in dz, measured).
+/// further from that law: with them it needs more steps than in dz, measured). `slope`: the
+/// force's slope dF/du near the root from a previous balance of the same wheel
+/// ([`Balanced::slope`]), or `None`: the first trial's correction is then Newton's step with
+/// it, aimed at the root itself, which under a load changed by ~1e−6 (the creep iteration's
+/// second pass) lands within the tolerance, where the Hertzian law's step overshoots on
+/// purpose and needs a regula falsi step more.
 pub fn balance_hertzian<E>(
     touch: f64,
     first_approach: f64,
     load: f64,
     iterations: usize,
+    slope: Option<f64>,
     residual: impl FnMut(f64) -> Result<f64, E>,
 ) -> Result<Balanced, E> {
-    balance_in(touch, first_approach, load, iterations, true, residual)
+    balance_in(
+        touch,
+        first_approach,
+        load,
+        iterations,
+        true,
+        slope,
+        residual,
+    )
 }
 
-/// [`balance`] with the regula falsi in dz, or in u = δ^{3/2} if `hertzian`.
+/// [`balance`] with the regula falsi in dz, or in u = δ^{3/2} if `hertzian`; `slope` as in
+/// [`balance_hertzian`] (in the iteration's variable).
 fn balance_in<E>(
     touch: f64,
     first_approach: f64,
     load: f64,
     iterations: usize,
     hertzian: bool,
+    slope: Option<f64>,
     mut residual: impl FnMut(f64) -> Result<f64, E>,
 ) -> Result<Balanced, E> {
+    let u_of = |dz: f64| {
+        if hertzian {
+            let d = (dz - touch).max(0.0);
+            d * d.sqrt()
+        } else {
+            dz
+        }
+    };
+    let dz_of = |u: f64| {
+        if hertzian {
+            touch + u.cbrt().powi(2)
+        } else {
+            u
+        }
+    };
+    // The last two points evaluated, (u, residual), for the secant slope.
+    let mut recent = [(f64::NAN, f64::NAN); 2];
+    let mut evaluate = |dz: f64| -> Result<f64, E> {
+        let f = residual(dz)?;
+        recent = [recent[1], (u_of(dz), f)];
+        Ok(f)
+    };
+    let secant = |recent: &[(f64, f64); 2]| {
+        let [(u0, f0), (u1, f1)] = *recent;
+        (f1 - f0) / (u1 - u0)
+    };
+    let mut newton_slope = slope.filter(|s| s.is_finite() && *s > 0.0);
     let (mut lo, mut f_lo) = (touch, -load);
     let (mut hi, mut f_hi) = (f64::NAN, f64::NAN);
     let mut approach = first_approach.max(f64::MIN_POSITIVE);
     for _ in 0..BRACKET_TRIALS {
         let dz = touch + approach;
-        let f = residual(dz)?;
+        let f = evaluate(dz)?;
         if f.abs() <= LOAD_TOLERANCE * load {
             return Ok(Balanced {
                 lowering: dz,
                 evaluated: true,
+                slope: secant(&recent),
             });
+        }
+        // Newton's step with a known slope, once: aimed at the root (no overshoot).
+        if let Some(s) = newton_slope.take() {
+            let u = u_of(dz);
+            let next = dz_of(u - f / s) - touch;
+            if next.is_finite() && next > 0.5 * approach && next < 2.0 * approach {
+                if f > 0.0 {
+                    (hi, f_hi) = (dz, f);
+                } else {
+                    (lo, f_lo) = (dz, f);
+                }
+                approach = next;
+                continue;
+            }
         }
         let force = f + load;
         if f > 0.0 {
@@ -139,37 +210,24 @@ fn balance_in<E>(
         return Ok(Balanced {
             lowering: lo,
             evaluated: true,
+            slope: secant(&recent),
         });
     }
     let mut kept = 0i8;
     let mut last = hi;
-    let u_of = |dz: f64| {
-        if hertzian {
-            let d = (dz - touch).max(0.0);
-            d * d.sqrt()
-        } else {
-            dz
-        }
-    };
-    let dz_of = |u: f64| {
-        if hertzian {
-            touch + u.cbrt().powi(2)
-        } else {
-            u
-        }
-    };
     for _ in 0..iterations {
         let (u_lo, u_hi) = (u_of(lo), u_of(hi));
         let mut mid = dz_of((u_lo * f_hi - u_hi * f_lo) / (f_hi - f_lo));
         if !mid.is_finite() || mid <= lo.min(hi) || mid >= lo.max(hi) {
             mid = 0.5 * (lo + hi);
         }
-        let f_mid = residual(mid)?;
+        let f_mid = evaluate(mid)?;
         last = mid;
         if f_mid.abs() <= LOAD_TOLERANCE * load {
             return Ok(Balanced {
                 lowering: mid,
                 evaluated: true,
+                slope: secant(&recent),
             });
         }
         if (f_mid > 0.0) == (f_hi > 0.0) {
@@ -192,6 +250,7 @@ fn balance_in<E>(
     Ok(Balanced {
         lowering: best,
         evaluated: best == last,
+        slope: secant(&recent),
     })
 }
 
@@ -408,7 +467,7 @@ mod tests {
         let exact = touch + (load / k).powf(2.0 / 3.0);
         let mut evaluations = [0usize; 2];
         for (hertzian, calls) in [false, true].into_iter().zip(&mut evaluations) {
-            let b = balance_in(touch, 1e-5, load, 60, hertzian, |dz| {
+            let b = balance_in(touch, 1e-5, load, 60, hertzian, None, |dz| {
                 *calls += 1;
                 Ok::<_, ()>(k * (dz - touch).max(0.0).powf(1.5) - load)
             })
