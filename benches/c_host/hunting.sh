@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Steps the packed WheelRailContact FMU from a C host (benches/c_host/hunting.c) through a
+# hunting motion — y = 3 mm sin 2π·5 Hz·t, yaw = 1 mrad sin 2π·5 Hz·t, consistent vy and yaw
+# rate, built-in S1002/UIC60, 78.5 kN per wheel, kinematic creepages at 30 m/s, 1 ms steps — and
+# through the steady central case, for the configurations of docs/performance.md. Prints per
+# configuration the mean, median, 99th percentile and largest step [µs] (each step timed) and
+# the ratios of the means to Hertz + FASTSIM's in the same run.
+# Needs the packed FMU: `cargo run --release -p fmu-pack` first.
+# Usage: benches/c_host/hunting.sh [STEPS]   (default 20 000)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+STEPS="${1:-20000}"
+FMU="${FMU_DIR:-target/fmu}/WheelRailContact.fmu"
+[ -f "$FMU" ] || { echo "missing $FMU: run 'cargo run --release -p fmu-pack' first" >&2; exit 1; }
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+python3 - "$FMU" "$WORK" > "$WORK/vars" <<'PY'
+import sys, zipfile, xml.etree.ElementTree as ET
+fmu, work = sys.argv[1], sys.argv[2]
+zipfile.ZipFile(fmu).extractall(work + "/fmu")
+root = ET.parse(work + "/fmu/modelDescription.xml").getroot()
+vr = {v.get("name"): v.get("valueReference") for v in root.iter("ScalarVariable")}
+names = "normalModel tangentialModel planarPatch Qleft Qright y yaw vx vy yawRate omega".split()
+print(root.get("guid"), *(vr[n] for n in names))
+PY
+read -r GUID VRS < "$WORK/vars"
+gcc -O2 -std=c99 -o "$WORK/hunting" benches/c_host/hunting.c -ldl -lm
+LIB="$WORK/fmu/binaries/linux64/WheelRailContact.so"
+URI="file://$WORK/fmu/resources"
+run() { "$WORK/hunting" "$LIB" "$GUID" "$URI" "$1" "$STEPS" "$2" "$3" "$4" $VRS; }
+echo "fmi2DoStep from a C host, $STEPS steps of 1 ms, µs per step (machine: $(nproc) cores, $(uname -m))"
+printf "%-36s %-8s %8s %8s %8s %8s %7s\n" configuration motion mean median p99 max ratio
+# name normalModel tangentialModel planarPatch
+CONFIGS=(
+  "Hertz+FASTSIM 1 1 0"
+  "ANALYN+FASTSIM,planar 6 1 1"
+  "ANALYN+FaStrip,planar 6 3 1"
+  "Kik-Piotrowski+FASTSIM 3 1 0"
+  "Linder+FASTSIM 2 1 0"
+  "STRIPES-B+FASTSIM 4 1 0"
+  "STRIPES-A&B+FASTSIM 5 1 0"
+  "ANALYN+FASTSIM 6 1 0"
+  "ANALYN+FaStrip 6 3 0"
+)
+declare -A BASE
+for MOTION in hunting steady; do
+  for C in "${CONFIGS[@]}"; do
+    read -r NAME N T P <<< "$C"
+    read -r MEAN MEDIAN P99 MAX <<< "$(run "$MOTION" "$N" "$T" "$P")"
+    [ -n "${BASE[$MOTION]:-}" ] || BASE[$MOTION]=$MEAN
+    RATIO=$(python3 -c "print(f'{$MEAN / ${BASE[$MOTION]}:.2f}')")
+    printf "%-36s %-8s %8s %8s %8s %8s %7s\n" "$NAME" "$MOTION" "$MEAN" "$MEDIAN" "$P99" "$MAX" "$RATIO"
+  done
+done
