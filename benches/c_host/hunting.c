@@ -11,42 +11,7 @@
  * and largest step, then the thread's CPU time's median and 99th percentile (CPU time leaves out
  * the steps' preemptions by other processes, milliseconds each on a loaded machine: the tail the
  * element itself has). Built and run by benches/c_host/hunting.sh. */
-#define _POSIX_C_SOURCE 199309L
-#include <dlfcn.h>
-#include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <time.h>
-
-typedef void *Component;
-typedef unsigned int VR;
-typedef struct {
-    void (*logger)(void *, const char *, int, const char *, const char *, ...);
-    void *(*allocate)(size_t, size_t);
-    void (*free)(void *);
-    void *step_finished;
-    void *env;
-} Callbacks;
-
-static void logger(void *env, const char *name, int status, const char *category, const char *msg, ...) {
-    va_list args;
-    (void)env;
-    va_start(args, msg);
-    fprintf(stderr, "[%s %d %s] ", name, status, category);
-    vfprintf(stderr, msg, args);
-    fprintf(stderr, "\n");
-    va_end(args);
-}
-
-static void *sym(void *lib, const char *name) {
-    void *p = dlsym(lib, name);
-    if (!p) {
-        fprintf(stderr, "missing symbol %s\n", name);
-        exit(2);
-    }
-    return p;
-}
+#include "fmi_host.h"
 
 static double clock_s(clockid_t id) {
     struct timespec t;
@@ -77,22 +42,8 @@ int main(int argc, char **argv) {
                         "VR_yaw VR_vx VR_vy VR_yawRate VR_omega\n", argv[0]);
         return 2;
     }
-    void *lib = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
-    if (!lib) {
-        fprintf(stderr, "dlopen: %s\n", dlerror());
-        return 2;
-    }
-    Component (*instantiate)(const char *, int, const char *, const char *, const Callbacks *, int, int) =
-        sym(lib, "fmi2Instantiate");
-    int (*setup)(Component, int, double, double, int, double) = sym(lib, "fmi2SetupExperiment");
-    int (*enter)(Component) = sym(lib, "fmi2EnterInitializationMode");
-    int (*leave)(Component) = sym(lib, "fmi2ExitInitializationMode");
-    int (*set_int)(Component, const VR *, size_t, const int *) = sym(lib, "fmi2SetInteger");
-    int (*set_bool)(Component, const VR *, size_t, const int *) = sym(lib, "fmi2SetBoolean");
-    int (*set_real)(Component, const VR *, size_t, const double *) = sym(lib, "fmi2SetReal");
-    int (*do_step)(Component, double, double, int) = sym(lib, "fmi2DoStep");
-    int (*terminate)(Component) = sym(lib, "fmi2Terminate");
-    void (*free_instance)(Component) = sym(lib, "fmi2FreeInstance");
+    Fmi f;
+    void *lib = load_fmi(argv[1], &f);
 
     int steady = argv[4][0] == 's';
     int steps = atoi(argv[5]);
@@ -105,7 +56,7 @@ int main(int argc, char **argv) {
     if (!times || !cpu) return 2;
 
     Callbacks cb = {logger, calloc, free, NULL, NULL};
-    Component c = instantiate("hunting", 1, argv[2], argv[3], &cb, 0, 0);
+    Component c = f.instantiate("hunting", 1, argv[2], argv[3], &cb, 0, 0);
     if (!c) {
         fprintf(stderr, "fmi2Instantiate failed\n");
         return 1;
@@ -113,18 +64,18 @@ int main(int argc, char **argv) {
     const double h = 1e-3, q = 78500.0, v = 30.0, omega = 30.0 / 0.46 * 1.001;
     const double w = 2.0 * 3.14159265358979323846 * 5.0;
     int k = -1;
-    CHECK(setup(c, 0, 0.0, 0.0, 0, 0.0));
-    CHECK(set_int(c, &vr[NORMAL], 1, &normal));
-    CHECK(set_int(c, &vr[TANGENTIAL], 1, &tangential));
-    CHECK(set_bool(c, &vr[PLANAR], 1, &planar));
-    CHECK(enter(c));
-    CHECK(set_real(c, &vr[QL], 1, &q));
-    CHECK(set_real(c, &vr[QR], 1, &q));
-    CHECK(set_real(c, &vr[VX], 1, &v));
-    CHECK(set_real(c, &vr[OMEGA], 1, &omega));
-    CHECK(leave(c));
+    CHECK(f.setup(c, 0, 0.0, 0.0, 0, 0.0));
+    CHECK(f.set_int(c, &vr[NORMAL], 1, &normal));
+    CHECK(f.set_int(c, &vr[TANGENTIAL], 1, &tangential));
+    CHECK(f.set_bool(c, &vr[PLANAR], 1, &planar));
+    CHECK(f.enter(c));
+    CHECK(f.set_real(c, &vr[QL], 1, &q));
+    CHECK(f.set_real(c, &vr[QR], 1, &q));
+    CHECK(f.set_real(c, &vr[VX], 1, &v));
+    CHECK(f.set_real(c, &vr[OMEGA], 1, &omega));
+    CHECK(f.leave(c));
     /* One step outside the timing (first evaluation: cold start). */
-    CHECK(do_step(c, 0.0, h, 1));
+    CHECK(f.do_step(c, 0.0, h, 1));
     double t = h;
     for (k = 0; k < steps; k++) {
         double start = clock_s(CLOCK_MONOTONIC), start_cpu = clock_s(CLOCK_THREAD_CPUTIME_ID);
@@ -132,9 +83,9 @@ int main(int argc, char **argv) {
             VR motion[4] = {vr[Y], vr[YAW], vr[VY], vr[YAWRATE]};
             double s = sin(w * t), co = cos(w * t);
             double values[4] = {3e-3 * s, 1e-3 * s, 3e-3 * w * co, 1e-3 * w * co};
-            CHECK(set_real(c, motion, 4, values));
+            CHECK(f.set_real(c, motion, 4, values));
         }
-        CHECK(do_step(c, t, h, 1));
+        CHECK(f.do_step(c, t, h, 1));
         cpu[k] = clock_s(CLOCK_THREAD_CPUTIME_ID) - start_cpu;
         times[k] = clock_s(CLOCK_MONOTONIC) - start;
         t += h;
@@ -148,8 +99,8 @@ int main(int argc, char **argv) {
            1e6 * times[p99], 1e6 * times[steps - 1], 1e6 * cpu[steps / 2], 1e6 * cpu[p99]);
     free(times);
     free(cpu);
-    terminate(c);
-    free_instance(c);
+    f.terminate(c);
+    f.free_instance(c);
     dlclose(lib);
     return 0;
 }

@@ -12,23 +12,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 STEPS="${1:-20000}"
-FMU="${FMU_DIR:-target/fmu}/WheelRailContact.fmu"
-[ -f "$FMU" ] || { echo "missing $FMU: run 'cargo run --release -p fmu-pack' first" >&2; exit 1; }
-WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
-python3 - "$FMU" "$WORK" > "$WORK/vars" <<'PY'
-import sys, zipfile, xml.etree.ElementTree as ET
-fmu, work = sys.argv[1], sys.argv[2]
-zipfile.ZipFile(fmu).extractall(work + "/fmu")
-root = ET.parse(work + "/fmu/modelDescription.xml").getroot()
-vr = {v.get("name"): v.get("valueReference") for v in root.iter("ScalarVariable")}
-names = "normalModel tangentialModel planarPatch Qleft Qright y yaw vx vy yawRate omega".split()
-print(root.get("guid"), *(vr[n] for n in names))
-PY
-read -r GUID VRS < "$WORK/vars"
+# shellcheck source=benches/c_host/fmu_unpack.sh
+. benches/c_host/fmu_unpack.sh normalModel tangentialModel planarPatch Qleft Qright y yaw vx vy \
+  yawRate omega
 gcc -O2 -std=c99 -o "$WORK/hunting" benches/c_host/hunting.c -ldl -lm
-LIB="$WORK/fmu/binaries/linux64/WheelRailContact.so"
-URI="file://$WORK/fmu/resources"
 run() { "$WORK/hunting" "$LIB" "$GUID" "$URI" "$1" "$STEPS" "$2" "$3" "$4" $VRS; }
 echo "fmi2DoStep from a C host, $STEPS steps of 1 ms, µs per step (machine: $(nproc) cores, $(uname -m))"
 printf "%-26s %-8s %8s %8s %8s %8s %8s %8s %6s %6s\n" configuration motion mean median p99 max \
