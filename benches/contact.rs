@@ -1,5 +1,6 @@
-//! Speed of the contact element: Hertz, FASTSIM, the normal models and a full wheelset
-//! evaluation per model pair, on the built-in S1002/UIC60 pair at 78.5 kN per wheel.
+//! Speed of the contact element: Hertz, FASTSIM, the normal models and a full wheelset evaluation
+//! per model pair, on the built-in S1002/UIC60 pair at 78.5 kN per wheel, steady, moving and
+//! hunting (`cargo bench --bench contact -- hunting` for the last).
 //! `cargo bench --bench contact`; figures in docs/performance.md.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
@@ -169,11 +170,76 @@ fn bench_moving(c: &mut Criterion) {
     group.finish();
 }
 
+/// Steps timed one by one for the per-step percentiles of the hunting benches.
+const TIMED_STEPS: u64 = 4000;
+
+/// The `q` quantile (0…1) of sorted `values`, nearest rank.
+fn quantile(sorted: &[f64], q: f64) -> f64 {
+    let rank = ((q * sorted.len() as f64).ceil() as usize).clamp(1, sorted.len());
+    sorted[rank - 1]
+}
+
+/// A hunting wheelset (`common::hunting_input`: y = 3 mm and yaw = 1 mrad at 5 Hz, consistent
+/// vy and yaw rate), every normal model with every tangential option on its strip patches
+/// (non-planar) and ANALYN's planar patches: criterion's estimate per solve, and before it the
+/// per-step median and 99th percentile of [`TIMED_STEPS`] solves timed one by one (tail latency
+/// for real-time use).
+fn bench_hunting(c: &mut Criterion) {
+    let mut configs = vec![(NormalModel::Hertz, TangentialModel::ModelDefault, false)];
+    for model in NormalModel::ALL.into_iter().skip(1) {
+        for tangential in TangentialModel::ALL {
+            configs.push((model, tangential, false));
+        }
+    }
+    for tangential in TangentialModel::ALL {
+        configs.push((NormalModel::Analyn, tangential, true));
+    }
+    let mut group = c.benchmark_group("hunting");
+    for (model, tangential, planar) in configs {
+        let mut ws = wheelset_with(model, |s| {
+            s.tangential = tangential;
+            s.planar_patch = planar;
+        });
+        let mut out = WheelsetResult::default();
+        let name = format!(
+            "{}_{}{}",
+            model.name(),
+            tangential.name(),
+            if planar { "_planar" } else { "" }
+        );
+        let mut steps: Vec<f64> = (0..TIMED_STEPS)
+            .map(|k| {
+                let input = common::hunting_input(k);
+                let start = std::time::Instant::now();
+                ws.solve(black_box(&input), &mut out).unwrap();
+                start.elapsed().as_secs_f64() * 1e6
+            })
+            .collect();
+        steps.sort_by(f64::total_cmp);
+        println!(
+            "hunting/{name}: per step median {:.1} µs, p99 {:.1} µs, max {:.1} µs ({TIMED_STEPS} steps)",
+            quantile(&steps, 0.5),
+            quantile(&steps, 0.99),
+            steps[steps.len() - 1]
+        );
+        let mut k = TIMED_STEPS;
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                k += 1;
+                ws.solve(black_box(&common::hunting_input(k)), &mut out)
+                    .unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
     bench_point,
     bench_wheelset,
     bench_moving,
+    bench_hunting,
     bench_scaling,
     bench_threads
 );

@@ -5,42 +5,7 @@
  *   MOVING 0: constant inputs (the central case, 78.5 kN per wheel);
  *   MOVING 1: the lateral shift y follows a 3 mm, 1 Hz sine at 1 ms steps, set before each step.
  * Prints the mean wall-clock time per step in microseconds. Built and run by benches/c_host/run.sh. */
-#define _POSIX_C_SOURCE 199309L
-#include <dlfcn.h>
-#include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <time.h>
-
-typedef void *Component;
-typedef unsigned int VR;
-typedef struct {
-    void (*logger)(void *, const char *, int, const char *, const char *, ...);
-    void *(*allocate)(size_t, size_t);
-    void (*free)(void *);
-    void *step_finished;
-    void *env;
-} Callbacks;
-
-static void logger(void *env, const char *name, int status, const char *category, const char *msg, ...) {
-    va_list args;
-    (void)env;
-    va_start(args, msg);
-    fprintf(stderr, "[%s %d %s] ", name, status, category);
-    vfprintf(stderr, msg, args);
-    fprintf(stderr, "\n");
-    va_end(args);
-}
-
-static void *sym(void *lib, const char *name) {
-    void *p = dlsym(lib, name);
-    if (!p) {
-        fprintf(stderr, "missing symbol %s\n", name);
-        exit(2);
-    }
-    return p;
-}
+#include "fmi_host.h"
 
 static double now(void) {
     struct timespec t;
@@ -62,53 +27,40 @@ int main(int argc, char **argv) {
         fprintf(stderr, "usage: %s LIB GUID RESOURCE_URI VR_NORMALMODEL MODEL VR_QLEFT VR_QRIGHT VR_Y STEPS MOVING\n", argv[0]);
         return 2;
     }
-    void *lib = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
-    if (!lib) {
-        fprintf(stderr, "dlopen: %s\n", dlerror());
-        return 2;
-    }
-    Component (*instantiate)(const char *, int, const char *, const char *, const Callbacks *, int, int) =
-        sym(lib, "fmi2Instantiate");
-    int (*setup)(Component, int, double, double, int, double) = sym(lib, "fmi2SetupExperiment");
-    int (*enter)(Component) = sym(lib, "fmi2EnterInitializationMode");
-    int (*leave)(Component) = sym(lib, "fmi2ExitInitializationMode");
-    int (*set_int)(Component, const VR *, size_t, const int *) = sym(lib, "fmi2SetInteger");
-    int (*set_real)(Component, const VR *, size_t, const double *) = sym(lib, "fmi2SetReal");
-    int (*do_step)(Component, double, double, int) = sym(lib, "fmi2DoStep");
-    int (*terminate)(Component) = sym(lib, "fmi2Terminate");
-    void (*free_instance)(Component) = sym(lib, "fmi2FreeInstance");
+    Fmi f;
+    void *lib = load_fmi(argv[1], &f);
 
     VR vr_model = (VR)atoi(argv[4]), vr_ql = (VR)atoi(argv[6]), vr_qr = (VR)atoi(argv[7]), vr_y = (VR)atoi(argv[8]);
     int model = atoi(argv[5]), steps = atoi(argv[9]), moving = atoi(argv[10]);
     Callbacks cb = {logger, calloc, free, NULL, NULL};
-    Component c = instantiate("bench", 1, argv[2], argv[3], &cb, 0, 0);
+    Component c = f.instantiate("bench", 1, argv[2], argv[3], &cb, 0, 0);
     if (!c) {
         fprintf(stderr, "fmi2Instantiate failed\n");
         return 1;
     }
     const double h = 1e-3, q = 78500.0;
-    CHECK(setup(c, 0, 0.0, 0.0, 0, 0.0));
-    CHECK(set_int(c, &vr_model, 1, &model));
-    CHECK(enter(c));
-    CHECK(set_real(c, &vr_ql, 1, &q));
-    CHECK(set_real(c, &vr_qr, 1, &q));
-    CHECK(leave(c));
+    CHECK(f.setup(c, 0, 0.0, 0.0, 0, 0.0));
+    CHECK(f.set_int(c, &vr_model, 1, &model));
+    CHECK(f.enter(c));
+    CHECK(f.set_real(c, &vr_ql, 1, &q));
+    CHECK(f.set_real(c, &vr_qr, 1, &q));
+    CHECK(f.leave(c));
     /* One step outside the timing (first evaluation: cold start). */
-    CHECK(do_step(c, 0.0, h, 1));
+    CHECK(f.do_step(c, 0.0, h, 1));
     double t = h;
     double start = now();
     for (int k = 0; k < steps; k++) {
         if (moving) {
             double y = 3e-3 * sin(2.0 * 3.14159265358979323846 * t);
-            CHECK(set_real(c, &vr_y, 1, &y));
+            CHECK(f.set_real(c, &vr_y, 1, &y));
         }
-        CHECK(do_step(c, t, h, 1));
+        CHECK(f.do_step(c, t, h, 1));
         t += h;
     }
     double per_step = (now() - start) / steps;
     printf("%.3f\n", per_step * 1e6);
-    terminate(c);
-    free_instance(c);
+    f.terminate(c);
+    f.free_instance(c);
     dlclose(lib);
     return 0;
 }

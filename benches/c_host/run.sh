@@ -6,22 +6,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 STEPS="${1:-10000}"
-FMU="${FMU_DIR:-target/fmu}/WheelRailContact.fmu"
-[ -f "$FMU" ] || { echo "missing $FMU: run 'cargo run --release -p fmu-pack' first" >&2; exit 1; }
-WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
-python3 - "$FMU" "$WORK" > "$WORK/vars" <<'PY'
-import sys, zipfile, xml.etree.ElementTree as ET
-fmu, work = sys.argv[1], sys.argv[2]
-zipfile.ZipFile(fmu).extractall(work + "/fmu")
-root = ET.parse(work + "/fmu/modelDescription.xml").getroot()
-vr = {v.get("name"): v.get("valueReference") for v in root.iter("ScalarVariable")}
-print(root.get("guid"), vr["normalModel"], vr["Qleft"], vr["Qright"], vr["y"])
-PY
-read -r GUID VR_MODEL VR_QL VR_QR VR_Y < "$WORK/vars"
+# shellcheck source=benches/c_host/fmu_unpack.sh
+. benches/c_host/fmu_unpack.sh normalModel Qleft Qright y
+read -r VR_MODEL VR_QL VR_QR VR_Y <<< "$VRS"
 gcc -O2 -std=c99 -o "$WORK/dostep" benches/c_host/dostep.c -ldl -lm
-LIB="$WORK/fmu/binaries/linux64/WheelRailContact.so"
-URI="file://$WORK/fmu/resources"
 echo "fmi2DoStep from a C host, $STEPS steps, mean µs per step (machine: $(nproc) cores)"
 printf "%-28s %10s %10s\n" "normalModel" "constant" "moving"
 declare -A T

@@ -84,6 +84,10 @@ const MULTI_START_SAMPLES: usize = 64;
 /// Step below which that search has converged [m]: the gap error is second order in it.
 const WHEEL_NEWTON_TOLERANCE: f64 = 1e-9;
 
+/// Step in the wheel's axial coordinate below which the unimodal lowest-point search has
+/// converged [m] (`WheelOnRail::unimodal_lowest_point`; the gap error is second order in it).
+const LOWEST_POINT_TOLERANCE: f64 = 1e-12;
+
 /// Fine samples per coarse interval of the scan. The search samples every `COARSE_STRIDE`-th
 /// point first and fills in an interval's fine samples only where a lower bound of the gap over
 /// it lies below the level asked for (see [`WheelOnRail::search`]). 12 (6 mm at the default
@@ -903,6 +907,9 @@ impl WheelOnRail {
                 radius: r0 + z_w,
             };
         }
+        if p.single_lowest_point {
+            return self.unimodal_lowest_point(w, p);
+        }
         // Newton on X for the maximum of q(X) = r(l)² − d², safeguarded by a bracket: the
         // lowest point of a wheel lies within |d| ≤ r0/2 of the axle plane for any yaw a
         // wheelset can have (the lead is r·tan γ·tan ψ), where q' = −2d cos ψ − 2r z' sin ψ
@@ -990,6 +997,73 @@ impl WheelOnRail {
             z,
             slope,
             x,
+            y_wheel: l - offset,
+            radius: r,
+        }
+    }
+
+    /// [`WheelOnRail::wheel_at`] where the yawed wheel has one lowest point per lateral
+    /// ([`Prepared::single_lowest_point`]: q concave everywhere). At the maximum of q, q' = 0
+    /// gives the lead d = −r z' tan ψ as a function of the axial coordinate l alone, and so the
+    /// lateral of the lowest point, w(l) = l cos ψ + d sin ψ = l cos ψ − r z' sin²ψ / cos ψ,
+    /// with w'(l) = −q''/(2 cos ψ) > 0. Newton on w(l) = w from l = w / cos ψ (the point in the
+    /// axle plane), kept inside the lead bound's bracket, on the wheel spline's piece at hand (a
+    /// new interval lookup only where l leaves it): the correction is r z' tan ψ sin ψ ≲ 1 µm
+    /// at running yaw, so Newton's second step moves l by ~1e−15 m. One interval lookup and
+    /// three cubic evaluations per lateral, where Newton in X took three full spline
+    /// evaluations. The point is the same maximum (to rounding).
+    fn unimodal_lowest_point(&self, w: f64, p: &Prepared) -> WheelPoint {
+        let r0 = self.setup.wheel_radius;
+        let offset = self.setup.taping_line_offset();
+        let (sin, cos) = (p.sin_yaw, p.cos_yaw);
+        let sin_tan = sin * sin / cos;
+        let spread = self.lead_bracket(p) * (sin / cos).abs();
+        let mut l = w / cos;
+        let (mut lo, mut hi) = (l - spread, l + spread);
+        let mut piece = self.wheel.piece_at(l - offset);
+        let mut at = piece.eval(l - offset);
+        for _ in 0..WHEEL_NEWTON_STEPS {
+            let (z, dz, d2z) = at;
+            let r = r0 + z;
+            let residual = l * cos - r * dz * sin_tan - w;
+            if residual == 0.0 || residual.is_nan() {
+                break;
+            }
+            if residual > 0.0 {
+                hi = l;
+            } else {
+                lo = l;
+            }
+            let rate = cos - (dz * dz + r * d2z) * sin_tan;
+            let newton = l - residual / rate;
+            let next = if rate > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            let moved = (next - l).abs();
+            l = next;
+            if !piece.contains(l - offset) {
+                piece = self.wheel.piece_at(l - offset);
+            }
+            at = piece.eval(l - offset);
+            if moved <= LOWEST_POINT_TOLERANCE {
+                break;
+            }
+        }
+        let (z_w, dz_w, _) = at;
+        let r = r0 + z_w;
+        let d = -r * dz_w * sin / cos;
+        let z = (r * r - d * d).max(0.0).sqrt();
+        let slope = if z > 0.0 {
+            (r * dz_w * cos - d * sin) / z
+        } else {
+            0.0
+        };
+        WheelPoint {
+            z,
+            slope,
+            x: d * cos - l * sin,
             y_wheel: l - offset,
             radius: r,
         }

@@ -554,8 +554,9 @@ impl Model for WheelRailContact {
 
     /// The solver's history (the load iteration's warm starts, `wheelset::WarmStart`, and the
     /// patches' output slots, `wheelset::Slot`): a version byte, then per wheel (left, right) a
-    /// presence byte and the approach [m], creep component [N], their changes over the last
-    /// step and the strip ratio as little-endian f64, then per wheel and output slot a presence
+    /// flag byte (0 none, else 1 + the steps of history) and the approach [m], creep component
+    /// [N], their changes over the last step, the changes' bends and the strip ratio as
+    /// little-endian f64, then per wheel and output slot a presence
     /// byte, the patch's `yRail` [m] as little-endian f64 and its index among the wheel's
     /// patches. Nothing before initialization.
     fn save_state(&self, out: &mut Vec<u8>) {
@@ -587,12 +588,13 @@ fn not_initialized() -> ModelError {
     ModelError::Error("model used before initialization".into())
 }
 
-/// Version of the solver-history layout in FMU states (5: warm start with one strip ratio, and
-/// the output slots).
-const HISTORY_VERSION: u8 = 5;
+/// Version of the solver-history layout in FMU states (6: warm start with its changes and their
+/// bends, one strip ratio, and the output slots).
+const HISTORY_VERSION: u8 = 6;
 /// Values of one wheel's warm start in the layout ([`warm_fields`]).
-const WARM_FIELDS: usize = 5;
-/// Bytes of one wheel's warm start: presence flag, then its values as little-endian f64.
+const WARM_FIELDS: usize = 7;
+/// Bytes of one wheel's warm start: flag (0 none, else 1 + [`WarmStart::history`]), then its
+/// values as little-endian f64.
 const WARM_SIDE_BYTES: usize = 1 + WARM_FIELDS * 8;
 /// Bytes of one output slot: presence flag, `yRail` as little-endian f64, patch index.
 const SLOT_BYTES: usize = 1 + 8 + 1;
@@ -600,13 +602,15 @@ const SLOT_BYTES: usize = 1 + 8 + 1;
 const HISTORY_BYTES: usize = 1 + 2 * WARM_SIDE_BYTES + 2 * MAX_PATCHES * SLOT_BYTES;
 
 /// The warm start's values in the state layout's order: approach, creep component, their
-/// changes, the strip ratio.
+/// changes, the changes' bends, the strip ratio.
 fn warm_fields(w: &WarmStart) -> [f64; WARM_FIELDS] {
     [
         w.approach,
         w.creep,
         w.approach_step,
         w.creep_step,
+        w.approach_bend,
+        w.creep_bend,
         w.strip_ratio,
     ]
 }
@@ -619,12 +623,15 @@ fn write_history(
 ) {
     out.push(HISTORY_VERSION);
     for side in warm {
-        out.push(u8::from(side.is_some()));
+        out.push(side.map_or(0, |w| 1 + w.history.min(2)));
         let w = side.unwrap_or(WarmStart {
             approach: 0.0,
             creep: 0.0,
             approach_step: 0.0,
             creep_step: 0.0,
+            approach_bend: 0.0,
+            creep_bend: 0.0,
+            history: 0,
             strip_ratio: 1.0,
         });
         for v in warm_fields(&w) {
@@ -667,25 +674,32 @@ fn parse_history(bytes: &[u8]) -> Result<History, String> {
     {
         let values: [f64; WARM_FIELDS] = std::array::from_fn(|k| f64_at(chunk, 1 + 8 * k));
         // The order of `warm_fields`.
-        let [approach, creep, approach_step, creep_step, strip_ratio] = values;
-        let finite = [creep, approach_step, creep_step]
+        let [approach, creep, approach_step, creep_step, approach_bend, creep_bend, strip_ratio] =
+            values;
+        let finite = [creep, approach_step, creep_step, approach_bend, creep_bend]
             .iter()
             .all(|v| v.is_finite());
         let positive = |v: f64| v > 0.0 && v.is_finite();
         *side = match chunk[0] {
             0 => None,
-            1 if positive(approach) && finite && positive(strip_ratio) => Some(WarmStart {
-                approach,
-                creep,
-                approach_step,
-                creep_step,
-                strip_ratio,
-            }),
+            flag @ 1..=3 if positive(approach) && finite && positive(strip_ratio) => {
+                Some(WarmStart {
+                    approach,
+                    creep,
+                    approach_step,
+                    creep_step,
+                    approach_bend,
+                    creep_bend,
+                    history: flag - 1,
+                    strip_ratio,
+                })
+            }
             flag => {
                 return Err(format!(
                     "FMU state: invalid warm start (flag {flag}, approach {approach} m, creep \
                      component {creep} N, their changes {approach_step} m and {creep_step} N, \
-                     strip ratio {strip_ratio})"
+                     their bends {approach_bend} m and {creep_bend} N, strip ratio \
+                     {strip_ratio})"
                 ))
             }
         };
@@ -777,6 +791,9 @@ mod tests {
                 creep: -123.25,
                 approach_step: -2.5e-8,
                 creep_step: 0.75,
+                approach_bend: 1.5e-10,
+                creep_bend: -0.125,
+                history: 2,
                 strip_ratio: 1.25,
             }),
         ];
@@ -800,6 +817,11 @@ mod tests {
         let mut v = bytes.clone();
         v[1] = 7;
         assert!(parse_history(&v).is_err());
+        // A NaN bend (the right wheel's approach bend, field 4 of its warm start).
+        let bend = 1 + WARM_SIDE_BYTES + 1 + 8 * 4;
+        let mut v = bytes.clone();
+        v[bend..bend + 8].copy_from_slice(&f64::NAN.to_le_bytes());
+        assert!(parse_history(&v).is_err());
         let slot_start = 1 + 2 * WARM_SIDE_BYTES + MAX_PATCHES * SLOT_BYTES;
         let mut v = bytes.clone();
         v[slot_start + 9] = MAX_GROUPS as u8;
@@ -822,6 +844,9 @@ mod tests {
                 creep,
                 approach_step: 0.0,
                 creep_step,
+                approach_bend: 0.0,
+                creep_bend: 0.0,
+                history: 1,
                 strip_ratio,
             };
             let v = bytes_of([Some(w), None], slots);

@@ -403,6 +403,40 @@ impl CubicSpline {
         (lo, hi)
     }
 
+    /// The cubic piece that [`CubicSpline::eval`] uses at `y` (the linear continuation outside
+    /// the knots): evaluated anywhere in its interval, [`SplinePiece::eval`] gives what `eval`
+    /// gives, without the interval lookup. `y` must not be NaN.
+    #[inline]
+    pub fn piece_at(&self, y: f64) -> SplinePiece {
+        let n = self.knots.len();
+        let y0 = self.knots[0];
+        let yn = self.knots[n - 1];
+        if y <= y0 {
+            let c = self.coef[0];
+            return SplinePiece {
+                from: f64::NEG_INFINITY,
+                to: y0,
+                origin: y0,
+                coef: [c[0], c[1], 0.0, 0.0],
+            };
+        }
+        if y >= yn {
+            return SplinePiece {
+                from: yn,
+                to: f64::INFINITY,
+                origin: yn,
+                coef: [self.end_value, self.end_slope, 0.0, 0.0],
+            };
+        }
+        let i = self.index.interval(&self.knots, y);
+        SplinePiece {
+            from: self.knots[i],
+            to: self.knots[i + 1],
+            origin: self.knots[i],
+            coef: self.coef[i],
+        }
+    }
+
     /// Value, first and second derivative at `y`. Linear continuation outside the knots; NaN in,
     /// NaN out. No allocation.
     #[inline]
@@ -428,6 +462,40 @@ impl CubicSpline {
         let i = self.index.interval(&self.knots, y);
         let [a, b, c, d] = self.coef[i];
         let t = y - self.knots[i];
+        (
+            a + t * (b + t * (c + t * d)),
+            b + t * (2.0 * c + 3.0 * d * t),
+            2.0 * c + 6.0 * d * t,
+        )
+    }
+}
+
+/// One cubic piece of a [`CubicSpline`] over the knot interval [`from`, `to`] (unbounded for the
+/// linear continuations): a + b t + c t² + d t³ with t = y − `origin`.
+///
+/// [`from`]: SplinePiece::from
+/// [`to`]: SplinePiece::to
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SplinePiece {
+    pub from: f64,
+    pub to: f64,
+    origin: f64,
+    coef: [f64; 4],
+}
+
+impl SplinePiece {
+    /// Whether `y` lies in the piece's interval (ends included: the spline's value, slope and
+    /// second derivative are continuous at a knot).
+    #[inline]
+    pub fn contains(&self, y: f64) -> bool {
+        y >= self.from && y <= self.to
+    }
+
+    /// Value, first and second derivative at `y` (the spline's where [`SplinePiece::contains`]).
+    #[inline]
+    pub fn eval(&self, y: f64) -> (f64, f64, f64) {
+        let [a, b, c, d] = self.coef;
+        let t = y - self.origin;
         (
             a + t * (b + t * (c + t * d)),
             b + t * (2.0 * c + 3.0 * d * t),
@@ -593,6 +661,28 @@ mod tests {
         assert!((v - (0.3 * 0.123 * 0.123 - 0.1 * 0.123 + 2.0)).abs() < 1e-9);
         assert!((d - (0.6 * 0.123 - 0.1)).abs() < 1e-7);
         assert!((dd - 0.6).abs() < 1e-5);
+    }
+
+    #[test]
+    fn a_piece_evaluates_as_the_spline_inside_its_interval_and_outside_the_knots() {
+        let y: Vec<f64> = (0..40).map(|i| 1e-3 * (i as f64).powf(1.3)).collect();
+        let z: Vec<f64> = y.iter().map(|&v| (30.0 * v).sin() * 1e-2).collect();
+        let s = CubicSpline::fit(&y, &z, None, 0.0).unwrap();
+        let (lo, hi) = (y[0] - 5e-3, y[y.len() - 1] + 5e-3);
+        for k in 0..=2000 {
+            let at = lo + (hi - lo) * k as f64 / 2000.0;
+            let piece = s.piece_at(at);
+            assert!(piece.contains(at), "{at} outside its piece {piece:?}");
+            // Same interval, same arithmetic: bit for bit.
+            assert_eq!(piece.eval(at), s.eval(at), "at {at}");
+            // Elsewhere in the interval (its start, its middle) the spline uses the same piece.
+            for other in [
+                piece.from.max(lo),
+                0.5 * (piece.from.max(lo) + piece.to.min(hi)),
+            ] {
+                assert_eq!(piece.eval(other), s.eval(other), "at {other} of {piece:?}");
+            }
+        }
     }
 
     #[test]

@@ -366,19 +366,27 @@ fn unit_direction(vx: f64, vy: f64) -> (f64, f64) {
         let dominant = |v: f64| if v.is_infinite() { v.signum() } else { 0.0 };
         (dominant(vx), dominant(vy))
     } else {
-        // Normalise by the larger component first so that hypot cannot overflow or underflow.
+        // Normalise by the larger component first so that the norm cannot overflow or underflow.
         let m = vx.abs().max(vy.abs());
         if m == 0.0 {
             return (0.0, 0.0);
         }
         (vx / m, vy / m)
     };
-    let n = vx.hypot(vy);
+    let n = norm(vx, vy);
     if n > 0.0 {
         (vx / n, vy / n)
     } else {
         (0.0, 0.0)
     }
+}
+
+/// |(x, y)| as √(x² + y²): for components whose squares stay inside the f64 range (unit
+/// vectors, tractions in Pa, marched displacements below [`MAX_OVERDRIVE`] = 1e100), where
+/// `hypot`'s scaling against overflow costs several times the square root in the march.
+#[inline]
+fn norm(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt()
 }
 
 /// Centre of element `i` of `n` on [−1, 1]: −1 + (2i + 1)/n, bitwise antisymmetric
@@ -586,12 +594,12 @@ pub(crate) fn solve_strip_with_pressure(
         let (direction, fastsim_slip) = if use_fastsim {
             let trial_x = fs_x - step_x;
             let trial_y = fs_y - (step_y_at_centre + step_y_per_x * xr);
-            let trial = trial_x.hypot(trial_y);
+            let trial = norm(trial_x, trial_y);
             let slip = if trial > shape {
                 let f = shape / trial;
                 fs_x = trial_x * f;
                 fs_y = trial_y * f;
-                (l1 * (fs_x - trial_x)).hypot(l2 * (fs_y - trial_y)) * bound_peak * slip_factor
+                norm(l1 * (fs_x - trial_x), l2 * (fs_y - trial_y)) * bound_peak * slip_factor
             } else {
                 fs_x = trial_x;
                 fs_y = trial_y;
@@ -631,7 +639,7 @@ pub(crate) fn solve_strip_with_pressure(
                 };
                 let tx = mu_pmax * kappa * diff;
                 let ty = mu_pmax * (lambda * diff + spin * s2);
-                if tx.hypot(ty) <= mu_pmax * s1 * (1.0 + BOUND_TOLERANCE) {
+                if norm(tx, ty) <= mu_pmax * s1 * (1.0 + BOUND_TOLERANCE) {
                     adhesion = Some((tx, ty));
                 }
             }
@@ -641,7 +649,7 @@ pub(crate) fn solve_strip_with_pressure(
             None => (mu_p * direction.0, mu_p * direction.1, true),
         };
         if slip {
-            let contribution = tx.hypot(ty) * fastsim_slip;
+            let contribution = norm(tx, ty) * fastsim_slip;
             // NaN only from 0 × ∞ (no traction, absurd slip): contributes nothing.
             if !contribution.is_nan() {
                 power += contribution;

@@ -288,6 +288,8 @@ pub(super) fn hertz_side(
         (approach, if tangential { creep } else { 0.0 })
     });
     let level = merge_level(touch, q, ctx.e_star, ctx.settings.setup.wheel_radius);
+    // The force's slope from the previous pass: the next pass's first step.
+    let mut slope = None;
     creep_passes(q, start_creep, |_, target| {
         let balanced = balance(
             touch,
@@ -295,6 +297,7 @@ pub(super) fn hertz_side(
             target,
             LOAD_ITERATIONS,
             ForceLaw::Hertzian,
+            slope,
             |dz| {
                 Ok::<_, InputError>(
                     evaluate_side(side, ctx, input, dz, level, out, false)? - target,
@@ -302,6 +305,7 @@ pub(super) fn hertz_side(
             },
         )?;
         first_approach = balanced.lowering - touch;
+        slope = Some(balanced.slope);
         if !tangential {
             if !balanced.evaluated {
                 evaluate_side(side, ctx, input, balanced.lowering, level, out, false)?;

@@ -111,6 +111,27 @@ pub fn moving_y(k: u64) -> f64 {
     3e-3 * (2.0 * std::f64::consts::PI * k as f64 * 1e-3).sin()
 }
 
+/// Frequency of the benches' hunting wheelset [Hz].
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub const HUNTING_FREQUENCY: f64 = 5.0;
+
+/// The central case of a hunting wheelset at step `k` of 1 ms: y = 3 mm · sin 2πft and
+/// yaw = 1 mrad · sin 2πft at f = [`HUNTING_FREQUENCY`], with the consistent lateral velocity
+/// and yaw rate (their time derivatives) in the kinematic creepages; otherwise
+/// [`central_input`]. Every solve meets a new, yawed pose, as in a vehicle run.
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub fn hunting_input(k: u64) -> WheelsetInput {
+    let omega = 2.0 * std::f64::consts::PI * HUNTING_FREQUENCY;
+    let phase = omega * k as f64 * 1e-3;
+    let (sin, cos) = phase.sin_cos();
+    let mut input = central_input(3e-3 * sin, 3e-3 * omega * cos);
+    input.yaw = 1e-3 * sin;
+    if let Creepages::Kinematic { yaw_rate, .. } = &mut input.creepages {
+        *yaw_rate = 1e-3 * omega * cos;
+    }
+    input
+}
+
 /// Rows of a reference CSV file of the vendored data as (header → value) maps; non-numeric fields
 /// are left out.
 #[allow(dead_code)] // not every test crate that includes this module reads CSV files

@@ -539,6 +539,13 @@ impl Profile {
         self.spline.eval(y).2
     }
 
+    /// The spline piece that [`Profile::eval`] uses at y [m] (not NaN): cheap evaluations
+    /// nearby without the interval lookup.
+    #[inline]
+    pub fn piece_at(&self, y: f64) -> crate::numeric::spline::SplinePiece {
+        self.spline.piece_at(y)
+    }
+
     /// (z [m], dz/dy [–], d²z/dy² [1/m]) at y [m]. No allocation; linear continuation outside
     /// [`Profile::y_range`]; NaN for NaN.
     #[inline]
