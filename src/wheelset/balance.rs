@@ -8,8 +8,8 @@
 //! superlinear, and when the force jumps across the load the bracket closes on the jump and the
 //! end nearer to the load is taken.
 
-use crate::numeric::roots::Illinois;
 use super::{SideResult, WheelsetError};
+use crate::numeric::roots::Illinois;
 
 /// Relative tolerance on the vertical force balance.
 pub const LOAD_TOLERANCE: f64 = 1e-9;
@@ -456,7 +456,15 @@ mod tests {
     #[test]
     fn residual_errors_are_passed_on() {
         assert_eq!(
-            balance(0.0, 1e-5, 1.0, 10, ForceLaw::General, None, |_| Err::<f64, _>("bad")),
+            balance(
+                0.0,
+                1e-5,
+                1.0,
+                10,
+                ForceLaw::General,
+                None,
+                |_| Err::<f64, _>("bad")
+            ),
             Err("bad")
         );
     }

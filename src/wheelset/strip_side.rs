@@ -317,9 +317,15 @@ impl StripSide {
         table: &HertzShapeTable,
     ) -> f64 {
         let first = approach.max(1e-9);
-        let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, ForceLaw::General, None, |dz| {
-            Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q)
-        });
+        let Ok(balanced) = balance(
+            touch,
+            first,
+            q,
+            LOAD_ITERATIONS,
+            ForceLaw::General,
+            None,
+            |dz| Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q),
+        );
         if !balanced.evaluated {
             self.vertical_force(balanced.lowering, params, table);
         }
