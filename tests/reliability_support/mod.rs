@@ -1,86 +1,19 @@
-//! Shared driver of the reliability and soak tests (`tests/reliability.rs`, `tests/soak.rs`): one
-//! FMU instance driven through the crate's exported `fmi2*` functions — the same C ABI a host
-//! resolves from the packed shared library — with the log captured per instance name, and a
-//! seeded random walk of the `WheelRailContact` inputs.
+//! Shared driver of the reliability and soak tests (`tests/reliability.rs`, `tests/soak.rs`):
+//! instances of the linked FMUs (`tests/linked`) driven by the `fmi_host` harness, checked
+//! reads that name the instance and its logged errors, and a seeded random walk of the
+//! `WheelRailContact` inputs.
 //!
-//! No `unwrap` across the C boundary: every call returns its `fmi2Status` to the test, which
-//! asserts it.
+//! The harness returns every `fmi2Status` to the test, which asserts it.
 
 #![allow(dead_code)] // each test crate uses a different part of the driver
 
-use fmi_sys::fmi2::*;
-use railcontact::fmi::export::*;
 use railcontact::fmi::model::ModelInfo;
-use railcontact::fmi::variables::{Causality, VarInfo, VarType};
-use std::ffi::{CStr, CString};
-use std::sync::Mutex;
+use railcontact::fmi::variables::VarInfo;
 
-pub use fmi_sys::fmi2::{
-    fmi2Status_fmi2Discard as DISCARD, fmi2Status_fmi2Error as ERROR, fmi2Status_fmi2OK as OK,
-    fmi2Status_fmi2Warning as WARNING,
-};
-
-/// One captured log message: the status it was logged with and its text.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Message {
-    pub status: fmi2Status,
-    pub text: String,
-}
-
-/// Log messages, routed by fmi-sys's variadic C logger through the `log` crate, tagged with the
-/// instance name (its `target`) so that parallel tests can tell theirs apart.
-struct Capture(Mutex<Vec<(String, Message)>>);
-
-impl log::Log for Capture {
-    fn enabled(&self, _: &log::Metadata<'_>) -> bool {
-        true
-    }
-    fn log(&self, r: &log::Record<'_>) {
-        // fmi-sys maps Error and Fatal to Error, Warning to Warn, Discard to Trace, OK to Info.
-        let status = match r.level() {
-            log::Level::Error => ERROR,
-            log::Level::Warn => WARNING,
-            log::Level::Trace => DISCARD,
-            _ => OK,
-        };
-        let message = Message {
-            status,
-            text: r.args().to_string(),
-        };
-        self.0
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .push((r.target().to_string(), message));
-    }
-    fn flush(&self) {}
-}
-
-static CAPTURE: Capture = Capture(Mutex::new(Vec::new()));
-
-/// The messages logged so far by the instance `name`.
-pub fn messages_of(name: &str) -> Vec<Message> {
-    CAPTURE
-        .0
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .iter()
-        .filter(|(t, _)| t == name)
-        .map(|(_, m)| m.clone())
-        .collect()
-}
-
-/// Forgets the messages of instance `name` (long runs).
-pub fn clear_messages_of(name: &str) {
-    CAPTURE
-        .0
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .retain(|(t, _)| t != name);
-}
-
-fn install_logger() {
-    let _ = log::set_logger(&CAPTURE).map(|()| log::set_max_level(log::LevelFilter::Trace));
-}
+pub use crate::linked::instantiate;
+#[allow(unused_imports)] // soak.rs checks no discard
+pub use fmi_host::Status::{Discard as DISCARD, Error as ERROR, Ok as OK, Warning as WARNING};
+pub use fmi_host::{Instance, Status};
 
 /// The variable `name` of `info`; panics in the test (never in the FMU) if it does not exist.
 pub fn var(info: &ModelInfo, name: &str) -> &'static VarInfo {
@@ -88,408 +21,109 @@ pub fn var(info: &ModelInfo, name: &str) -> &'static VarInfo {
         .unwrap_or_else(|| panic!("{} has no variable {name}", info.model_identifier))
 }
 
-/// An instance driven through the C ABI.
-pub struct Fmu {
-    pub c: fmi2Component,
-    pub info: &'static ModelInfo,
-    pub name: String,
-    /// Value references of the Real outputs, in table order.
-    real_outputs: Vec<u32>,
-    /// Value references of the Integer outputs, in table order.
-    integer_outputs: Vec<u32>,
-    /// Whether `fmi2FreeInstance` is still due (tests of double freeing clear it).
-    pub owned: bool,
+/// Reads and log checks that assert, naming the instance and what it logged.
+pub trait Checked {
+    /// The value of a Real variable; asserts that `fmi2GetReal` returns OK.
+    fn real(&self, name: &str) -> f64;
+    /// The value of an Integer variable; asserts that `fmi2GetInteger` returns OK.
+    fn integer(&self, name: &str) -> i32;
+    /// All outputs ([`Instance::read_outputs`]); asserts OK and that every value is finite.
+    fn outputs(&self) -> Vec<f64>;
+    /// Asserts that every output value is finite, naming the first that is not.
+    fn assert_finite(&self, out: &[f64]);
+    /// Set-up, enter and exit initialization mode; asserts OK.
+    fn init(&self);
+    /// The texts of the messages logged with `fmi2Error` (or worse).
+    fn errors(&self) -> Vec<String>;
+    /// The texts of the messages logged with `fmi2Warning`.
+    fn warnings(&self) -> Vec<String>;
+    /// Asserts that some warning contains every one of `parts`.
+    fn assert_warning_logged(&self, parts: &[&str]);
+    /// Asserts that some error message contains every one of `parts`.
+    fn assert_error_logged(&self, parts: &[&str]);
 }
 
-// SAFETY: an FMU instance may be used from another thread, one call at a time (FMI 2.0); the
-// tests move each instance into one thread.
-unsafe impl Send for Fmu {}
-
-impl Fmu {
-    /// Instantiates `info` as `name` (resources: a nonexistent `file:` directory), or panics.
-    pub fn new(info: &'static ModelInfo, name: &str) -> Self {
-        Self::try_new(info, name, info.guid, Some("file:///nonexistent/resources"))
-            .unwrap_or_else(|| panic!("fmi2Instantiate({name}) returned NULL"))
-    }
-
-    /// `fmi2Instantiate` with the given GUID and resource location; `None` if it returns NULL.
-    pub fn try_new(
-        info: &'static ModelInfo,
-        name: &str,
-        guid: &str,
-        resources: Option<&str>,
-    ) -> Option<Self> {
-        install_logger();
-        let callbacks = fmi2CallbackFunctions {
-            logger: Some(fmi_sys::fmi2::logger::callback_logger_handler),
-            allocateMemory: None,
-            freeMemory: None,
-            stepFinished: None,
-            componentEnvironment: std::ptr::null_mut(),
-        };
-        let cname = CString::new(name).ok()?;
-        let cguid = CString::new(guid).ok()?;
-        let curi = resources.map(CString::new).transpose().ok()?;
-        // SAFETY: valid NUL-terminated strings and callbacks for the call's duration (the FMU
-        // copies what it keeps).
-        let c = unsafe {
-            fmi2Instantiate(
-                cname.as_ptr(),
-                fmi2Type_fmi2CoSimulation,
-                cguid.as_ptr(),
-                curi.as_ref().map_or(std::ptr::null(), |u| u.as_ptr()),
-                &callbacks,
-                0,
-                0,
-            )
-        };
-        if c.is_null() {
-            return None;
-        }
-        let outputs = |ty| {
-            info.variables
-                .iter()
-                .filter(|v| v.causality == Causality::Output && v.ty == ty)
-                .map(|v| v.vr)
-                .collect()
-        };
-        Some(Self {
-            c,
-            info,
-            name: name.to_string(),
-            real_outputs: outputs(VarType::Real),
-            integer_outputs: outputs(VarType::Integer),
-            owned: true,
-        })
-    }
-
-    pub fn messages(&self) -> Vec<Message> {
-        messages_of(&self.name)
-    }
-
-    /// Messages logged with `fmi2Error` (or worse).
-    pub fn errors(&self) -> Vec<String> {
-        self.messages()
-            .into_iter()
-            .filter(|m| m.status >= ERROR)
-            .map(|m| m.text)
-            .collect()
-    }
-
-    /// Messages logged with `fmi2Warning`.
-    pub fn warnings(&self) -> Vec<String> {
-        self.messages()
-            .into_iter()
-            .filter(|m| m.status == WARNING)
-            .map(|m| m.text)
-            .collect()
-    }
-
-    /// Asserts that some warning contains every one of `parts`.
+impl Checked for Instance {
     #[track_caller]
-    pub fn assert_warning_logged(&self, parts: &[&str]) {
-        let warnings = self.warnings();
-        assert!(
-            warnings.iter().any(|m| parts.iter().all(|p| m.contains(p))),
-            "{}: no warning containing all of {parts:?}; warnings: {warnings:#?}",
-            self.name
-        );
+    fn real(&self, name: &str) -> f64 {
+        self.get_real(name).unwrap_or_else(|e| panic!("{e}"))
     }
 
-    /// Asserts that some error message contains every one of `parts`.
     #[track_caller]
-    pub fn assert_error_logged(&self, parts: &[&str]) {
-        let errors = self.errors();
-        assert!(
-            errors.iter().any(|m| parts.iter().all(|p| m.contains(p))),
-            "{}: no error message containing all of {parts:?}; errors: {errors:#?}",
-            self.name
-        );
+    fn integer(&self, name: &str) -> i32 {
+        self.get_integer(name).unwrap_or_else(|e| panic!("{e}"))
     }
 
-    pub fn vr(&self, name: &str) -> u32 {
-        var(self.info, name).vr
-    }
-
-    pub fn set_real(&self, name: &str, x: f64) -> fmi2Status {
-        self.set_real_vr(self.vr(name), x)
-    }
-
-    pub fn set_real_vr(&self, vr: u32, x: f64) -> fmi2Status {
-        // SAFETY: one value reference, one value.
-        unsafe { fmi2SetReal(self.c, &vr, 1, &x) }
-    }
-
-    /// Sets several Real variables in one call.
-    pub fn set_reals(&self, vrs: &[u32], xs: &[f64]) -> fmi2Status {
-        assert_eq!(vrs.len(), xs.len());
-        // SAFETY: both arrays hold vrs.len() elements.
-        unsafe { fmi2SetReal(self.c, vrs.as_ptr(), vrs.len(), xs.as_ptr()) }
-    }
-
-    pub fn set_integer(&self, name: &str, k: i32) -> fmi2Status {
-        let vr = self.vr(name);
-        // SAFETY: one value reference, one value.
-        unsafe { fmi2SetInteger(self.c, &vr, 1, &k) }
-    }
-
-    pub fn set_boolean(&self, name: &str, b: bool) -> fmi2Status {
-        let vr = self.vr(name);
-        let v = fmi2Boolean::from(b);
-        // SAFETY: one value reference, one value.
-        unsafe { fmi2SetBoolean(self.c, &vr, 1, &v) }
-    }
-
-    pub fn set_string(&self, name: &str, s: &str) -> fmi2Status {
-        let vr = self.vr(name);
-        let Ok(cs) = CString::new(s) else {
-            return ERROR;
-        };
-        let p = cs.as_ptr();
-        // SAFETY: one value reference, one NUL-terminated string alive for the call.
-        unsafe { fmi2SetString(self.c, &vr, 1, &p) }
-    }
-
-    /// `fmi2GetReal` of one variable: (status, value; NaN if the call failed).
-    pub fn get_real_vr(&self, vr: u32) -> (fmi2Status, f64) {
-        let mut x = f64::NAN;
-        // SAFETY: one value reference, one slot.
-        let s = unsafe { fmi2GetReal(self.c, &vr, 1, &mut x) };
-        (s, x)
-    }
-
-    /// The value of a Real variable; asserts that `fmi2GetReal` returns OK.
     #[track_caller]
-    pub fn real(&self, name: &str) -> f64 {
-        let (s, x) = self.get_real_vr(self.vr(name));
-        assert_eq!(
-            s,
-            OK,
-            "{}: fmi2GetReal({name}): {:?}",
-            self.name,
-            self.errors()
-        );
-        x
-    }
-
-    /// The value of an Integer variable; asserts that `fmi2GetInteger` returns OK.
-    #[track_caller]
-    pub fn integer(&self, name: &str) -> i32 {
-        let vr = self.vr(name);
-        let mut k = i32::MIN;
-        // SAFETY: one value reference, one slot.
-        let s = unsafe { fmi2GetInteger(self.c, &vr, 1, &mut k) };
-        assert_eq!(s, OK, "{}: fmi2GetInteger({name})", self.name);
-        k
-    }
-
-    /// The value of a String variable (`None` if `fmi2GetString` fails).
-    pub fn string(&self, name: &str) -> Option<String> {
-        let vr = self.vr(name);
-        let mut p: fmi2String = std::ptr::null();
-        // SAFETY: one value reference, one slot.
-        let s = unsafe { fmi2GetString(self.c, &vr, 1, &mut p) };
-        if s != OK || p.is_null() {
-            return None;
-        }
-        // SAFETY: valid until the next fmi2GetString call on this instance.
-        Some(unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned())
-    }
-
-    /// All outputs in one `fmi2GetReal` and one `fmi2GetInteger` call: Real outputs in table
-    /// order, then the Integer outputs as f64. Returns the worse of the two statuses.
-    pub fn try_outputs(&self) -> (fmi2Status, Vec<f64>) {
-        let mut reals = vec![f64::NAN; self.real_outputs.len()];
-        let mut ints = vec![i32::MIN; self.integer_outputs.len()];
-        // SAFETY: arrays of matching lengths.
-        let s1 = unsafe {
-            fmi2GetReal(
-                self.c,
-                self.real_outputs.as_ptr(),
-                reals.len(),
-                reals.as_mut_ptr(),
-            )
-        };
-        // SAFETY: arrays of matching lengths.
-        let s2 = unsafe {
-            fmi2GetInteger(
-                self.c,
-                self.integer_outputs.as_ptr(),
-                ints.len(),
-                ints.as_mut_ptr(),
-            )
-        };
-        reals.extend(ints.iter().map(|&k| f64::from(k)));
-        (s1.max(s2), reals)
-    }
-
-    /// All outputs; asserts OK and that every value is finite.
-    #[track_caller]
-    pub fn outputs(&self) -> Vec<f64> {
-        let (s, out) = self.try_outputs();
+    fn outputs(&self) -> Vec<f64> {
+        let (s, out) = self.read_outputs();
         assert_eq!(
             s,
             OK,
             "{}: reading the outputs: {:?}",
-            self.name,
+            self.name(),
             self.errors()
         );
         self.assert_finite(&out);
         out
     }
 
-    /// Asserts that every output value is finite, naming the first that is not.
     #[track_caller]
-    pub fn assert_finite(&self, out: &[f64]) {
+    fn assert_finite(&self, out: &[f64]) {
         if let Some(i) = out.iter().position(|x| !x.is_finite()) {
-            let names: Vec<&str> =
-                self.info
-                    .variables
-                    .iter()
-                    .filter(|v| v.causality == Causality::Output && v.ty == VarType::Real)
-                    .chain(
-                        self.info.variables.iter().filter(|v| {
-                            v.causality == Causality::Output && v.ty == VarType::Integer
-                        }),
-                    )
-                    .map(|v| v.name)
-                    .collect();
-            panic!("{}: output {} = {}", self.name, names[i], out[i]);
+            let names = self.output_names();
+            panic!("{}: output {} = {}", self.name(), names[i], out[i]);
         }
-    }
-
-    pub fn setup(&self, stop: Option<f64>) -> fmi2Status {
-        // SAFETY: live instance.
-        unsafe {
-            fmi2SetupExperiment(
-                self.c,
-                0,
-                0.0,
-                0.0,
-                fmi2Boolean::from(stop.is_some()),
-                stop.unwrap_or(0.0),
-            )
-        }
-    }
-
-    pub fn enter(&self) -> fmi2Status {
-        // SAFETY: live instance.
-        unsafe { fmi2EnterInitializationMode(self.c) }
-    }
-
-    pub fn exit(&self) -> fmi2Status {
-        // SAFETY: live instance.
-        unsafe { fmi2ExitInitializationMode(self.c) }
-    }
-
-    /// Setup, enter and exit initialization mode; returns the first status that is not OK.
-    pub fn try_init(&self) -> fmi2Status {
-        for s in [self.setup(None), self.enter(), self.exit()] {
-            if s != OK {
-                return s;
-            }
-        }
-        OK
     }
 
     #[track_caller]
-    pub fn init(&self) {
-        let s = self.try_init();
-        assert_eq!(s, OK, "{}: initialization: {:?}", self.name, self.errors());
+    fn init(&self) {
+        let s = self.initialize();
+        assert_eq!(
+            s,
+            OK,
+            "{}: initialization: {:?}",
+            self.name(),
+            self.errors()
+        );
     }
 
-    pub fn step(&self, t: f64, h: f64) -> fmi2Status {
-        // SAFETY: live instance.
-        unsafe { fmi2DoStep(self.c, t, h, 1) }
+    fn errors(&self) -> Vec<String> {
+        logged(self, |s| s >= ERROR)
     }
 
-    pub fn terminate(&self) -> fmi2Status {
-        // SAFETY: live instance.
-        unsafe { fmi2Terminate(self.c) }
+    fn warnings(&self) -> Vec<String> {
+        logged(self, |s| s == WARNING)
     }
 
-    pub fn reset(&self) -> fmi2Status {
-        // SAFETY: live instance.
-        unsafe { fmi2Reset(self.c) }
-    }
-
-    /// (status, Terminated) from `fmi2GetBooleanStatus(fmi2Terminated)`.
-    pub fn terminated(&self) -> (fmi2Status, bool) {
-        let mut b: fmi2Boolean = 0;
-        // SAFETY: live instance, one slot.
-        let s = unsafe { fmi2GetBooleanStatus(self.c, fmi2StatusKind_fmi2Terminated, &mut b) };
-        (s, b != 0)
-    }
-
-    /// (status, time) from `fmi2GetRealStatus(fmi2LastSuccessfulTime)`.
-    pub fn last_successful_time(&self) -> (fmi2Status, f64) {
-        let mut t = f64::NAN;
-        // SAFETY: live instance, one slot.
-        let s = unsafe { fmi2GetRealStatus(self.c, fmi2StatusKind_fmi2LastSuccessfulTime, &mut t) };
-        (s, t)
-    }
-
-    /// The current FMU state, serialized (`fmi2GetFMUstate`, `fmi2SerializedFMUstateSize`,
-    /// `fmi2SerializeFMUstate`, `fmi2FreeFMUstate`); asserts every status.
     #[track_caller]
-    pub fn serialized_state(&self) -> Vec<u8> {
-        let mut state: fmi2FMUstate = std::ptr::null_mut();
-        // SAFETY: live instance; the slot is NULL.
-        assert_eq!(unsafe { fmi2GetFMUstate(self.c, &mut state) }, OK);
-        let mut size = 0usize;
-        // SAFETY: state created above.
-        assert_eq!(
-            unsafe { fmi2SerializedFMUstateSize(self.c, state, &mut size) },
-            OK
+    fn assert_warning_logged(&self, parts: &[&str]) {
+        let warnings = self.warnings();
+        assert!(
+            warnings.iter().any(|m| parts.iter().all(|p| m.contains(p))),
+            "{}: no warning containing all of {parts:?}; warnings: {warnings:#?}",
+            self.name()
         );
-        let mut bytes = vec![0 as fmi2Byte; size];
-        // SAFETY: buffer of `size` bytes.
-        assert_eq!(
-            unsafe { fmi2SerializeFMUstate(self.c, state, bytes.as_mut_ptr(), size) },
-            OK
-        );
-        // SAFETY: state created above, freed once.
-        assert_eq!(unsafe { fmi2FreeFMUstate(self.c, &mut state) }, OK);
-        assert!(state.is_null());
-        bytes.iter().map(|&b| b as u8).collect()
     }
 
-    /// `fmi2DeSerializeFMUstate` of `bytes`: the status, and the new state (NULL on failure).
-    pub fn deserialize(&self, bytes: &[u8]) -> (fmi2Status, fmi2FMUstate) {
-        let mut state: fmi2FMUstate = std::ptr::null_mut();
-        // SAFETY: buffer of bytes.len() bytes; the slot is NULL.
-        let s = unsafe {
-            fmi2DeSerializeFMUstate(
-                self.c,
-                bytes.as_ptr().cast::<fmi2Byte>(),
-                bytes.len(),
-                &mut state,
-            )
-        };
-        (s, state)
-    }
-
-    /// Deserializes `bytes` and sets the state; returns the first status that is not OK.
-    pub fn restore_serialized(&self, bytes: &[u8]) -> fmi2Status {
-        let (s, mut state) = self.deserialize(bytes);
-        if s != OK {
-            return s;
-        }
-        // SAFETY: state created by fmi2DeSerializeFMUstate.
-        let set = unsafe { fmi2SetFMUstate(self.c, state) };
-        // SAFETY: freed once.
-        let free = unsafe { fmi2FreeFMUstate(self.c, &mut state) };
-        set.max(free)
+    #[track_caller]
+    fn assert_error_logged(&self, parts: &[&str]) {
+        let errors = self.errors();
+        assert!(
+            errors.iter().any(|m| parts.iter().all(|p| m.contains(p))),
+            "{}: no error message containing all of {parts:?}; errors: {errors:#?}",
+            self.name()
+        );
     }
 }
 
-impl Drop for Fmu {
-    fn drop(&mut self) {
-        if self.owned {
-            // SAFETY: freed exactly once.
-            unsafe { fmi2FreeInstance(self.c) };
-        }
-    }
+/// The texts of the messages of `f` whose status passes `keep`.
+fn logged(f: &Instance, keep: impl Fn(Status) -> bool) -> Vec<String> {
+    f.messages()
+        .into_iter()
+        .filter(|m| keep(m.status))
+        .map(|m| m.text)
+        .collect()
 }
 
 /// SplitMix64: a small deterministic generator for seeded input sequences.
