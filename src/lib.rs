@@ -9,9 +9,7 @@
 //! Units are SI at every public boundary (m, N, Pa, rad, s); frames and signs are documented in
 //! `docs/conventions.md`.
 
-pub mod case_json;
 pub mod error;
-pub mod halfspace;
 
 // Layers, bottom up: numbers, geometry, normal and tangential contact, the contact point and the
 // wheelset that assemble them, the FMI glue and the models it exports.

@@ -38,7 +38,7 @@
 //! Known limits: the blend is a model of the transition, not a solution of it: in a transition
 //! region the forces are a weighted mean of two descriptions that each hold only at its ends.
 
-use crate::geometry::search::MAX_CANDIDATES;
+use crate::geometry::search::{ContactPoint, Ridge, WheelOnRail, MAX_CANDIDATES};
 
 /// Most groups kept per wheel (three separate patches with one transition, or a chain of three
 /// minima in transition: at most six runs carry weight).
@@ -224,6 +224,65 @@ impl GroupLayout {
     pub fn groups(&self) -> &[Group] {
         &self.groups[..self.len]
     }
+}
+
+/// The lateral bounds (gauge side, field side; wheelset frame) of `group` among the candidates
+/// `candidates` (field side first) with `ridges` between them: the ridges to the neighbouring
+/// candidates outside the group (the neighbour itself where the ridge is above the filled
+/// level), or the ends of the scan `scan`.
+pub fn group_bounds(
+    candidates: &[ContactPoint],
+    ridges: &[Option<Ridge>],
+    group: &Group,
+    scan: (f64, f64),
+) -> (f64, f64) {
+    let m = candidates.len();
+    let field = if group.first > 0 {
+        ridges[group.first - 1].map_or(candidates[group.first - 1].lateral, |r| r.lateral)
+    } else {
+        scan.1
+    };
+    let gauge = if group.last + 1 < m {
+        ridges[group.last].map_or(candidates[group.last + 1].lateral, |r| r.lateral)
+    } else {
+        scan.0
+    };
+    (gauge, field)
+}
+
+/// The patch groups of the wheel's current search merged at the level `level` and in contact
+/// at the lowering `contact_level` [m], shoulders merging with `shoulder` (see
+/// [`crate::geometry::groups`]), with the candidates they refer to.
+pub fn groups_at(
+    geometry: &mut WheelOnRail,
+    level: f64,
+    contact_level: f64,
+    shoulder: f64,
+) -> (GroupLayout, [ContactPoint; MAX_CANDIDATES], usize) {
+    geometry.fill_to_level(level.max(contact_level));
+    let candidates = geometry.candidates().as_slice();
+    let m = candidates.len();
+    let mut points = [ContactPoint::default(); MAX_CANDIDATES];
+    points[..m].copy_from_slice(candidates);
+    let mut gaps = [0.0; MAX_CANDIDATES];
+    let mut ridge_gaps = [None; MAX_CANDIDATES];
+    for k in 0..m {
+        gaps[k] = points[k].gap;
+    }
+    for (k, r) in geometry.ridges().iter().enumerate() {
+        ridge_gaps[k] = r.map(|r| r.gap);
+    }
+    (
+        GroupLayout::new(
+            &gaps[..m],
+            &ridge_gaps[..m.saturating_sub(1)],
+            level,
+            contact_level,
+            shoulder,
+        ),
+        points,
+        m,
+    )
 }
 
 #[cfg(test)]

@@ -22,12 +22,21 @@
 //! [`StripPoints`] for the tangential problem); a patch that would extend beyond its strips'
 //! range (a model much softer than Hertz) is cut at the range's end.
 
-use crate::geometry::groups::{Group, GroupLayout, MAX_GROUPS};
-use crate::geometry::search::{ContactPlane, ContactPoint, Ridge, StripPoints, WheelOnRail};
+use nalgebra::Vector3;
+
+use super::balance::{creep_passes, creep_upward};
+use super::kinematics::{creepages_at, strip_point, tangential_in_axes, NonPlanar};
+use super::{store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput};
+use crate::error::InputError;
+use crate::geometry::groups::{group_bounds, groups_at, MAX_GROUPS};
+use crate::geometry::search::{ContactPlane, ContactPoint, StripPoints, WheelOnRail};
 use crate::geometry::strips::StripGeometry;
 use crate::normal::shape::HertzShapeTable;
 use crate::normal::strips::{PatchSummary, StripSolution};
 use crate::normal::{NormalModel, NormalParams, StripModel};
+use crate::tangential::fastsim::Creepage;
+use crate::tangential::patch::{strip_flexibilities, EquivalentEllipse, TangentialModel};
+use crate::tangential::strip_fastsim::TangentialStrip;
 use crate::wheelset::balance::balance;
 
 /// One non-elliptic patch: its plane, strips, model state, solution and weight.
@@ -173,69 +182,6 @@ pub const LAYOUT_FACTOR: f64 = 1.3;
 /// origin of its contact plane: Kik–Piotrowski's ε, as the multi-Hertzian reference point.
 const ANCHOR_FRACTION: f64 = crate::normal::kik_piotrowski::KP_EPSILON;
 
-/// The lateral bounds (gauge side, field side; wheelset frame) of `group` among the candidates
-/// `candidates` (field side first) with `ridges` between them: the ridges to the neighbouring
-/// candidates outside the group (the neighbour itself where the ridge is above the filled
-/// level), or the ends of the scan `scan`.
-pub fn group_bounds(
-    candidates: &[ContactPoint],
-    ridges: &[Option<Ridge>],
-    group: &Group,
-    scan: (f64, f64),
-) -> (f64, f64) {
-    let m = candidates.len();
-    let field = if group.first > 0 {
-        ridges[group.first - 1].map_or(candidates[group.first - 1].lateral, |r| r.lateral)
-    } else {
-        scan.1
-    };
-    let gauge = if group.last + 1 < m {
-        ridges[group.last].map_or(candidates[group.last + 1].lateral, |r| r.lateral)
-    } else {
-        scan.0
-    };
-    (gauge, field)
-}
-
-/// The patch groups of the wheel's current search merged at the level `level` and in contact
-/// at the lowering `contact_level` [m], shoulders merging with `shoulder` (see
-/// [`crate::geometry::groups`]), with the candidates they refer to.
-pub fn groups_at(
-    geometry: &mut WheelOnRail,
-    level: f64,
-    contact_level: f64,
-    shoulder: f64,
-) -> (
-    GroupLayout,
-    [ContactPoint; crate::geometry::search::MAX_CANDIDATES],
-    usize,
-) {
-    geometry.fill_to_level(level.max(contact_level));
-    let candidates = geometry.candidates().as_slice();
-    let m = candidates.len();
-    let mut points = [ContactPoint::default(); crate::geometry::search::MAX_CANDIDATES];
-    points[..m].copy_from_slice(candidates);
-    let mut gaps = [0.0; crate::geometry::search::MAX_CANDIDATES];
-    let mut ridge_gaps = [None; crate::geometry::search::MAX_CANDIDATES];
-    for k in 0..m {
-        gaps[k] = points[k].gap;
-    }
-    for (k, r) in geometry.ridges().iter().enumerate() {
-        ridge_gaps[k] = r.map(|r| r.gap);
-    }
-    (
-        GroupLayout::new(
-            &gaps[..m],
-            &ridge_gaps[..m.saturating_sub(1)],
-            level,
-            contact_level,
-            shoulder,
-        ),
-        points,
-        m,
-    )
-}
-
 impl StripSide {
     /// Buffers for `model`; `None` for Hertz.
     pub fn new(model: NormalModel) -> Option<Self> {
@@ -377,5 +323,226 @@ impl StripSide {
             self.vertical_force(balanced.lowering, params, table);
         }
         balanced.lowering
+    }
+}
+
+/// Writes the outputs of the strip patches of `side` (solved at lowering `dz`): patch figures
+/// from the strips, reference point at the patch's force centroid (interpolated between strips),
+/// tangential forces by the strip solvers of [`crate::tangential::strip_fastsim`] (planar or non-planar,
+/// flexibilities per [`TangentialModel`]). Returns the upward force on the wheel [N].
+pub(super) fn evaluate_strips(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    dz: f64,
+    out: &mut SideResult,
+) -> Result<f64, InputError> {
+    *out = SideResult {
+        z: dz,
+        ..SideResult::default()
+    };
+    let Some(strips) = side.strips.take() else {
+        return Ok(0.0);
+    };
+    let mut upward = 0.0;
+    let mut status = Ok(());
+    side.strip_of_group = [None; MAX_GROUPS];
+    for (index, patch) in strips.patches().iter().enumerate() {
+        if out.n_groups >= MAX_GROUPS {
+            break;
+        }
+        let summary = patch.summary();
+        if !summary.in_contact() {
+            continue;
+        }
+        match strip_patch_result(side, ctx, input, patch, &summary, dz, out.n_groups) {
+            Ok((result, tangential)) => {
+                side.strip_of_group[out.n_groups] = Some(index);
+                upward += store_patch(side.sigma, result, patch.weight, tangential, out);
+            }
+            Err(e) => {
+                status = Err(e);
+                break;
+            }
+        }
+    }
+    side.strips = Some(strips);
+    status?;
+    Ok(upward)
+}
+
+/// Normal and tangential result of one strip patch, and its tangential force in track axes.
+pub(super) fn strip_patch_result(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    patch: &StripPatch,
+    summary: &crate::normal::strips::PatchSummary,
+    dz: f64,
+    slot: usize,
+) -> Result<(PatchResult, Vector3<f64>), InputError> {
+    let sc = summary.s_centroid;
+    let at = |v: &[f64]| patch.interpolate(v, sc);
+    let reference = ContactPoint {
+        lateral: at(&patch.points.lateral),
+        longitudinal: at(&patch.geom.x_c),
+        y_rail: at(&patch.points.y_rail),
+        contact_angle: patch.contact_angle(),
+        rolling_radius: at(&patch.points.rolling_radius),
+        curv_a: at(&patch.geom.curv_a),
+        curv_b: at(&patch.geom.curv_b),
+        ..ContactPoint::default()
+    };
+    let gamma = reference.contact_angle;
+    let (creepage, speed) = creepages_at(input, side.sigma, &reference, gamma);
+    let settings = ctx.settings;
+    let equivalent = EquivalentEllipse::of(
+        summary,
+        ctx.shear_modulus,
+        ctx.material.poisson_ratio,
+        ctx.material.friction,
+    )?;
+    let source = settings
+        .tangential
+        .flexibility_source(settings.normal_model);
+    let b_floor = ctx.strips.params.b_floor();
+    let non_planar = (!settings.planar_patch)
+        .then(|| NonPlanar::new(input, side.sigma, settings.setup.wheel_radius, &reference));
+    let n = patch.geom.len();
+    // The strips' x is measured from the reference point (its yaw lead x_ref), where the
+    // patch's creepages hold: the spin's lateral slip φ·x is then zero there, as in Kalker's
+    // rigid slip w = (ξ − φy, η + φx) about the reference point.
+    let x_ref = reference.longitudinal;
+    for j in 0..n {
+        let lever = side.sigma * (patch.geom.s[j] - sc);
+        let mut strip = TangentialStrip {
+            lever,
+            width: patch.geom.ds,
+            x_c: patch.geom.x_c[j] - x_ref,
+            half_length: patch.sol.half_length[j],
+            pmax: patch.sol.pmax[j],
+            flexibility: [0.0; 3],
+            creepage,
+            reference_spin: creepage.phi,
+        };
+        if strip.half_length > 0.0 {
+            if let Some(non_planar) = &non_planar {
+                let trig = (patch.points.sin_angle[j], patch.points.cos_angle[j]);
+                let d = non_planar.increment(strip_point(patch, j, x_ref), lever, trig);
+                strip.creepage = Creepage {
+                    xi: creepage.xi + d.xi,
+                    eta: creepage.eta + d.eta,
+                    phi: creepage.phi + d.phi,
+                };
+            }
+            strip.flexibility = strip_flexibilities(
+                source,
+                settings.fastsim.flexibility,
+                &patch.geom,
+                &patch.sol,
+                j,
+                b_floor,
+                ctx.table,
+                &equivalent,
+                &strip.creepage,
+            )?;
+        }
+        side.tangential_strips[j] = strip;
+    }
+    let solver = &mut side.strip_fastsim[slot];
+    let mu = ctx.material.friction;
+    let t = if settings.tangential == TangentialModel::Fastrip {
+        solver.solve_fastrip(&side.tangential_strips[..n], &equivalent, speed)
+    } else {
+        solver.solve(&side.tangential_strips[..n], mu, speed)
+    };
+    // Forces: planar — all strips in the patch's axes; non-planar — each strip's in its own.
+    let mut tangential = Vector3::zeros();
+    let mut fy_patch = 0.0;
+    let (sin_g, cos_g) = gamma.sin_cos();
+    for j in 0..n {
+        let (fx, fy) = solver.strip_force(j);
+        if fx == 0.0 && fy == 0.0 {
+            continue;
+        }
+        let (sin_j, cos_j) = if settings.planar_patch {
+            (sin_g, cos_g)
+        } else {
+            (patch.points.sin_angle[j], patch.points.cos_angle[j])
+        };
+        tangential += tangential_in_axes(side.sigma, (sin_j, cos_j), fx, fy);
+        // cos(γ_j − γ).
+        fy_patch += fy * (cos_j * cos_g + sin_j * sin_g);
+    }
+    let result = PatchResult {
+        fn_: summary.normal_force,
+        fx: t.fx,
+        fy: fy_patch,
+        mz: t.mz,
+        area: summary.area,
+        pmax: summary.pmax,
+        a: equivalent.contact.a,
+        b: equivalent.contact.b,
+        length: summary.length,
+        width: summary.width,
+        y_rail: reference.y_rail,
+        contact_angle: gamma,
+        rolling_radius: reference.rolling_radius,
+        penetration: patch.approach(dz),
+        creepage,
+        adhesion_fraction: t.adhesion_fraction,
+        frictional_power: t.frictional_power,
+        max_traction: t.max_traction,
+        curv_a: reference.curv_a,
+        curv_b: reference.curv_b,
+        weight: 1.0,
+    };
+    Ok((result, tangential))
+}
+
+/// Replaces the Hertz solution in `out` by the side's strip model: `load` prescribed (`out.z`,
+/// the Hertz solution's lowering or the warm start's, is the starting guess, and `creep` the
+/// first estimate of the creep forces' vertical component) or the lowering `out.z`. Returns the
+/// last evaluated creep component (prescribed load only).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn solve_strips(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    load: Option<f64>,
+    touch: f64,
+    creep: f64,
+    ratio_hint: f64,
+    out: &mut SideResult,
+) -> Result<Option<f64>, WheelsetError> {
+    if side.strips.is_none() {
+        return Ok(None);
+    }
+    let table = ctx.table;
+    let mut dz = out.z;
+    // One pass: the strip layout and solve (the first, or without a load) or its re-balance to
+    // `target`, then the tangential problem at the new lowering; returns the creep forces'
+    // vertical component. The layout follows from the multi-Hertzian lowering `out.z` alone.
+    let mut pass = |side: &mut Side, k: usize, target: Option<f64>| {
+        let mut strips = side.strips.take().expect("strip buffers are present");
+        dz = match target {
+            Some(t) if k > 0 => strips.rebalance(&ctx.strips, table, t, touch, dz),
+            _ => strips.solve(
+                &mut side.geometry,
+                &ctx.strips,
+                table,
+                target,
+                touch,
+                dz,
+                ratio_hint,
+            ),
+        };
+        side.strips = Some(strips);
+        evaluate_strips(side, ctx, input, dz, out)?;
+        Ok::<_, WheelsetError>(creep_upward(out))
+    };
+    match load {
+        None => pass(side, 0, None).map(|_| None),
+        Some(q) => creep_passes(q, creep, |k, target| Ok(Some(pass(side, k, Some(target))?))),
     }
 }

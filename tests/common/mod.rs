@@ -10,9 +10,17 @@ use railcontact::material::Material;
 use railcontact::normal::NormalModel;
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetSettings};
 
-/// The vendored test data: `tests/data` (profiles and reference solutions, see its README).
+/// The vendored test data: `tests/data` of the repository root (profiles and reference
+/// solutions, see its README). This module is also included by other workspace members (e.g.
+/// `halfspace/tests`), whose manifest directory lies below the root: the data is looked up in
+/// the including crate's directory and then in its ancestors.
 pub fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data")
+    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest
+        .ancestors()
+        .map(|dir| dir.join("tests/data"))
+        .find(|data| data.join("README.md").is_file())
+        .unwrap_or_else(|| manifest.join("tests/data"))
 }
 
 /// A file of the test data; fails (never skips) when it is missing.

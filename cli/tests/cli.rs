@@ -1,14 +1,16 @@
 //! The `railcontact` command, run as a process: `solve` (JSON with every WheelRailContact output
 //! and strip tables; identical to the FMU's model run in-process), case-file errors and exit
-//! codes, and `sweep`.
+//! codes, `sweep`, and the help and usage errors.
 
-#[path = "../src/bin/railcontact/json.rs"]
-mod json;
+// The root crate's shared test set-up (the vendored data of `tests/data`).
+#[allow(dead_code)]
+#[path = "../../tests/common/mod.rs"]
+mod common;
 
-use json::Value;
 use railcontact::fmi::model::InstanceContext;
 use railcontact::fmi::variables::{Causality, Values, VarType};
 use railcontact::models::wheel_rail_contact::INFO;
+use serde_json::{Map, Value};
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
@@ -40,7 +42,11 @@ fn temp_file(name: &str, text: &str) -> PathBuf {
 fn solve(args: &[&str]) -> Value {
     let o = run(args);
     assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
-    json::parse(&stdout(&o)).unwrap_or_else(|e| panic!("invalid JSON: {e}"))
+    parse(&stdout(&o))
+}
+
+fn parse(text: &str) -> Value {
+    serde_json::from_str(text).unwrap_or_else(|e| panic!("invalid JSON: {e}"))
 }
 
 fn outputs() -> impl Iterator<Item = &'static railcontact::fmi::variables::VarInfo> {
@@ -59,12 +65,12 @@ fn real(doc: &Value, name: &str) -> f64 {
 /// contact and for no other.
 fn check_solution(doc: &Value) {
     for v in outputs() {
-        let Some(Value::Number(x, text)) = doc.get(v.name) else {
+        let Some(Value::Number(x)) = doc.get(v.name) else {
             panic!("output {} missing or not a number", v.name);
         };
-        assert!(x.is_finite(), "{} = {x}", v.name);
+        assert!(x.as_f64().is_some_and(f64::is_finite), "{} = {x}", v.name);
         if v.ty == VarType::Integer {
-            assert!(text.parse::<i64>().is_ok(), "{} = {text}", v.name);
+            assert!(x.is_i64(), "{} = {x}", v.name);
         }
     }
     let members = doc.as_object().unwrap();
@@ -85,7 +91,7 @@ fn check_solution(doc: &Value) {
             expected.push(format!("{side}.p{k}"));
         }
     }
-    let keys: Vec<&str> = strips.iter().map(|(k, _)| k.as_str()).collect();
+    let keys: Vec<&str> = strips.keys().map(String::as_str).collect();
     assert_eq!(keys, expected);
     for (patch, table) in strips {
         let rows = table.as_array().expect("strip array");
@@ -207,7 +213,7 @@ fn case_errors_name_key_value_and_range() {
         (
             "syntax.json",
             "{\n  \"y\": 0.001,\n}",
-            &["syntax.json', line 3, column 1: expected a key in double quotes"][..],
+            &["syntax.json', line 3, column 1: trailing comma"][..],
         ),
     ] {
         let case = temp_file(name, text);
@@ -251,8 +257,7 @@ fn malformed_profile_file_names_file_line_and_reason() {
 /// unmodified file solves.
 #[test]
 fn a_wheel_with_its_flange_on_the_wrong_side_exits_with_1() {
-    let benchmark = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/profiles/MBench_S1002_v3.prw");
+    let benchmark = common::data_file("profiles/MBench_S1002_v3.prw");
     let text = std::fs::read_to_string(&benchmark).expect("the benchmark wheel");
     let unmirrored = text.replacen("mirror.y       =  1", "mirror.y       =  0", 1);
     assert_ne!(unmirrored, text, "the benchmark file sets mirror.y = 1");
@@ -278,7 +283,7 @@ fn a_wheel_with_its_flange_on_the_wrong_side_exits_with_1() {
         "benchmark_wheel.json",
         &format!(
             "{{\"wheelProfile\": {}}}",
-            json::quote(benchmark.to_str().unwrap())
+            Value::from(benchmark.to_str().unwrap())
         ),
     );
     let o = run(&["solve", good.to_str().unwrap()]);
@@ -375,7 +380,7 @@ fn implausible_state_exits_with_3_and_prints_the_outputs() {
     let o = run(&["solve", case.to_str().unwrap()]);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(3), "{err}");
-    let doc = json::parse(&stdout(&o)).unwrap_or_else(|e| panic!("invalid JSON: {e}"));
+    let doc = parse(&stdout(&o));
     check_solution(&doc);
     let penetration = real(&doc, "left.p1.penetration");
     assert!(penetration > 1e-3, "{penetration}");
@@ -426,24 +431,53 @@ fn implausible_state_exits_with_3_and_prints_the_outputs() {
 
 #[test]
 fn help_and_bad_arguments() {
-    for args in [&["--help"][..], &["-h"], &["help"], &["solve", "--help"]] {
+    for args in [&["--help"][..], &["-h"], &["help"]] {
         let o = run(args);
         assert_eq!(o.status.code(), Some(0));
         let text = stdout(&o);
-        assert!(
-            text.contains("railcontact solve [CASE.json]") && text.contains("railcontact sweep")
-        );
-        assert!(text.contains("Exit codes:") && text.contains("3  implausible contact state"));
+        for part in [
+            "railcontact solve [CASE.json]",
+            "railcontact sweep [CASE.json]",
+            "railcontact report [CASE.json]",
+            "Exit codes:",
+            "3  implausible contact state",
+        ] {
+            assert!(text.contains(part), "{part:?} in {text}");
+        }
     }
+    for (command, option) in [("solve", "--grid <NX>"), ("sweep", "--step <DY>")] {
+        for args in [&[command, "--help"][..], &["help", command]] {
+            let o = run(args);
+            assert_eq!(o.status.code(), Some(0), "{args:?}");
+            let text = stdout(&o);
+            assert!(
+                text.contains(&format!("Usage: railcontact {command}")),
+                "{text}"
+            );
+            assert!(
+                text.contains(option) && text.contains("Exit codes:"),
+                "{text}"
+            );
+        }
+    }
+    let o = run(&["report", "--help"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(
+        stdout(&o).contains("tests/data/reference"),
+        "{}",
+        stdout(&o)
+    );
     for args in [
         &[][..],
         &["frobnicate"],
         &["solve", "--bogus"],
         &["solve", "a", "b"],
+        &["sweep", "--from", "x"],
     ] {
         let o = run(args);
         assert_eq!(o.status.code(), Some(1), "{args:?}");
         assert!(!stderr(&o).is_empty());
+        assert!(o.stdout.is_empty(), "{args:?}");
     }
 }
 
@@ -505,10 +539,14 @@ fn solve_with_a_strip_model_gives_its_strips_and_the_pressure_grid() {
             p("Fn")
         );
     }
-    // Bad --grid values are usage errors.
+    // Bad --grid values are usage errors naming the option, the value and the range.
     let o = run(&["solve", "--grid", "1"]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("--grid 1"));
+    let err = stderr(&o);
+    assert!(
+        err.contains("'1'") && err.contains("--grid") && err.contains("[2, 1000]"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -529,11 +567,10 @@ fn solve_with_traction_gives_the_tangential_field() {
         .and_then(Value::as_object)
         .expect("traction");
     assert_eq!(traction.len(), strips.len());
-    let entry = |o: &[(String, Value)]| {
-        o.iter()
-            .find(|(k, _)| k == "right.p1")
-            .and_then(|(_, v)| v.as_array())
-            .map(<[Value]>::to_vec)
+    let entry = |o: &Map<String, Value>| {
+        o.get("right.p1")
+            .and_then(Value::as_array)
+            .cloned()
             .expect("right.p1")
     };
     let (table, field) = (entry(strips), entry(traction));

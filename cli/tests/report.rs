@@ -5,8 +5,13 @@
 //! the central case's area and pmax of ANALYN and STRIPES-A&B and ANALYN's pure-spin forces,
 //! computed here through the library API on the benchmark wheelset (set-up as
 //! `tests/central.rs` and `tests/tangential.rs`), to the precision the table prints. A second
-//! run without reference data checks that the figures still come and the table is left out.
+//! run without reference data checks that the figures still come and the table is left out. A
+//! third regenerates the validation document at the defaults and checks that the repository's
+//! `docs/validation.md` and `docs/figures/errors.csv` are exactly its output, so that they cannot
+//! go stale.
 
+// The root crate's shared test set-up (the vendored data of `tests/data`, the benchmark wheelset).
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
 use common::{benchmark_wheelset_with, data_dir, data_file, read_csv};
@@ -314,11 +319,25 @@ fn report_reproduces_the_figures_and_the_error_table() {
 
 #[test]
 fn report_without_reference_draws_the_models_alone() {
-    // Built-in profiles: a working directory without tests/data, no --reference.
+    // A working directory outside the repository, built-in profiles, no reference.
     let cwd = temp_dir("cwd");
     let work = cwd.join("work");
     std::fs::create_dir_all(&work).unwrap();
-    let o = report(&["--out", "figures", "--quick"], &work);
+    std::fs::write(
+        work.join("builtin.json"),
+        "{\"wheelProfile\": \"S1002\", \"railProfile\": \"UIC60\"}",
+    )
+    .unwrap();
+    let o = report(
+        &[
+            "builtin.json",
+            "--out",
+            "figures",
+            "--no-reference",
+            "--quick",
+        ],
+        &work,
+    );
     let stderr = text(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "stderr: {stderr}");
     let out = work.join("figures");
@@ -338,4 +357,85 @@ fn report_without_reference_draws_the_models_alone() {
     assert_eq!(o.status.code(), Some(1));
     assert!(text(&o.stderr).contains("no/such/dir"));
     let _ = std::fs::remove_dir_all(&cwd);
+}
+
+/// The repository's root (the parent of this crate's directory).
+fn repository() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("the workspace root")
+        .to_path_buf()
+}
+
+#[test]
+fn validation_document_is_the_report_output() {
+    // The command the document names, into a temporary directory, from a working directory
+    // outside the repository (the defaults do not depend on it).
+    let tmp = temp_dir("validation");
+    let (figures, markdown) = (tmp.join("figures"), tmp.join("validation.md"));
+    let o = report(
+        &[
+            "--out",
+            figures.to_str().unwrap(),
+            "--markdown",
+            markdown.to_str().unwrap(),
+        ],
+        &tmp,
+    );
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", text(&o.stderr));
+    let generated = std::fs::read_to_string(&markdown)
+        .expect("the document")
+        .replace(
+            &format!("--out {}", figures.display()),
+            "--out docs/figures",
+        )
+        .replace(
+            &format!("--markdown {}", markdown.display()),
+            "--markdown docs/validation.md",
+        );
+    let docs = repository().join("docs");
+    let committed =
+        std::fs::read_to_string(docs.join("validation.md")).expect("docs/validation.md");
+    let regenerate = "cargo run --release -p railcontact-cli -- report --out docs/figures \
+                      --markdown docs/validation.md";
+    assert!(
+        committed.contains(regenerate),
+        "the document names its command"
+    );
+    assert_lines_equal(&committed, &generated, "docs/validation.md", regenerate);
+    let csv = std::fs::read_to_string(figures.join("errors.csv")).expect("errors.csv");
+    let committed_csv =
+        std::fs::read_to_string(docs.join("figures/errors.csv")).expect("docs/figures/errors.csv");
+    assert_lines_equal(&committed_csv, &csv, "docs/figures/errors.csv", regenerate);
+    // Every figure the document shows is in docs/figures.
+    for name in FIGURES {
+        for ext in ["png", "svg"] {
+            let link = format!("figures/{name}.{ext}");
+            assert!(committed.contains(&format!("({link})")), "{link}");
+            assert!(docs.join(&link).is_file(), "docs/{link}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&tmp);
+}
+
+/// Fails at the first differing line, naming the file and the command that regenerates it.
+fn assert_lines_equal(committed: &str, generated: &str, file: &str, regenerate: &str) {
+    for (k, (c, g)) in committed.lines().zip(generated.lines()).enumerate() {
+        assert_eq!(
+            c,
+            g,
+            "{file}, line {}: the committed line (left) differs from the regenerated one \
+             (right); regenerate with `{regenerate}`",
+            k + 1
+        );
+    }
+    assert_eq!(
+        committed.lines().count(),
+        generated.lines().count(),
+        "{file}: line counts differ; regenerate with `{regenerate}`"
+    );
+    assert_eq!(
+        committed, generated,
+        "{file}: regenerate with `{regenerate}`"
+    );
 }

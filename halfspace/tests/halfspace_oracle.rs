@@ -1,27 +1,30 @@
 //! The normal models against an exact half-space solution where no CONTACT data exist.
 //!
-//! `railcontact::halfspace` solves Kalker's frictionless normal problem exactly on a grid
+//! `railcontact_halfspace` solves Kalker's frictionless normal problem exactly on a grid
 //! (Polonsky–Keer conjugate gradients, Boussinesq influence coefficients). Here it is applied to
 //! the undeformed gap of a patch as the strips see it — h(x, s) = f(s) + A(s)(x − x_c(s))² on the
 //! patch's contact plane, 0.2 × 0.2 mm elements like the reference — at the patch's normal force.
 //! First the oracle itself is checked against CONTACT on the seed's central case; then ANALYN
-//! (the best fast model, docs/validation.md) is checked against the oracle over the lateral shifts
-//! of the acceptance: −1…+4 mm (tread) within ±10 % in area and ±15 % in pmax, and the
-//! flange-root shifts +5 and +6 mm with area error under 18 % and pmax error under 50 %.
+//! (the best fast model, docs/validation.md) is checked against the oracle over the lateral
+//! shifts −1…+4 mm (tread) within ±10 % in area and ±15 % in pmax, and at the flange-root shifts
+//! +5 and +6 mm with area error under 18 % and pmax error under 50 %.
 //!
-//! Set-up as `tests/central.rs` (benchmark profiles, E = 210 GPa, ν = 0.28, 78.5 kN per wheel,
-//! no yaw, right wheel). Known limit of the oracle: one contact plane per wheel (the dominant
-//! patch's); at +5 mm, where tread and flange-root contact coexist, it is approximate.
+//! Set-up as the root crate's `tests/central.rs` (benchmark profiles, E = 210 GPa, ν = 0.28,
+//! 78.5 kN per wheel, no yaw, right wheel). Known limit of the oracle: one contact plane per wheel
+//! (the dominant patch's); at +5 mm, where tread and flange-root contact coexist, it is
+//! approximate.
 
+// The root crate's shared test set-up (benchmark wheelset, vendored data of `tests/data`).
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
 use railcontact::geometry::search::StripPoints;
 use railcontact::geometry::strips::StripGeometry;
-use railcontact::halfspace::{solve_for_load, HalfspaceGrid};
 use railcontact::material::Material;
 use railcontact::normal::hertz::contact_modulus;
 use railcontact::normal::NormalModel;
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult};
+use railcontact_halfspace::{solve, Grid, Target};
 
 use common::benchmark_wheelset;
 
@@ -85,7 +88,7 @@ fn model_and_oracle(ws: &mut Wheelset, y: f64) -> ((f64, f64), (f64, f64)) {
     );
     let half_x = 0.75 * summary.length + 1e-3;
     let nx = (2.0 * half_x / ELEMENT).ceil() as usize;
-    let grid = HalfspaceGrid {
+    let grid = Grid {
         nx,
         ny,
         dx: ELEMENT,
@@ -100,10 +103,15 @@ fn model_and_oracle(ws: &mut Wheelset, y: f64) -> ((f64, f64), (f64, f64)) {
             (0..nx).map(move |i| geom.f[j] + geom.curv_a[j] * (grid.x(i) - geom.x_c[j]).powi(2))
         })
         .collect();
-    let exact = solve_for_load(&grid, &gap, normal_force, contact_modulus(E, NU), 1e-9)
-        .expect("half-space solve");
-    let exact_pmax = exact.pressure.iter().copied().fold(0.0, f64::max);
-    ((area, pmax), (exact.contact_area, exact_pmax))
+    let exact = solve(
+        &grid,
+        &gap,
+        Target::Force(normal_force),
+        contact_modulus(E, NU),
+        1e-9,
+    )
+    .expect("half-space solve");
+    ((area, pmax), (exact.contact_area, exact.max_pressure))
 }
 
 #[test]

@@ -1,0 +1,181 @@
+//! Wheelset kinematics: creepages at a contact point from the rigid-body motion, contact axes.
+//!
+//! Track axes: x forward, y right, z down (`docs/conventions.md`). The wheelset centre C moves
+//! with v_C = (vx, vy, 0); the wheelset turns with Ω = ψ̇ e_z − ω e_axle, the axle direction
+//! e_axle = (−sin ψ, cos ψ, 0) yawed by ψ. A material point P of the wheel then moves with
+//! v = v_C + Ω × (P − C), and the creepages of the wheel relative to the rail at a contact
+//! point with contact axes (e_x, e_y, e_z) are ξ = v·e_x/V, η = v·e_y/V, φ = Ω·e_z/V, with
+//! V = max(|vx|, [`V_MIN`]). Contact axes at contact angle γ on side σ (+1 right, −1 left):
+//! e_x = (1, 0, 0), e_y = (0, cos γ, −σ sin γ), e_z = (0, σ sin γ, cos γ) (from the wheel into
+//! the rail).
+
+use nalgebra::Vector3;
+
+use super::strip_side::StripPatch;
+use super::{Creepages, WheelsetInput, V_MIN};
+use crate::geometry::search::ContactPoint;
+use crate::tangential::fastsim::Creepage;
+
+/// Creepages of the wheel relative to the rail at contact point `p` with contact angle `gamma`,
+/// and the reference speed V [m/s].
+pub(super) fn creepages_at(
+    input: &WheelsetInput,
+    sigma: f64,
+    p: &ContactPoint,
+    gamma: f64,
+) -> (Creepage, f64) {
+    let point = Vector3::new(p.longitudinal, p.lateral, p.rolling_radius);
+    creepages_with(input, sigma, point, gamma.sin_cos(), input.yaw.sin_cos())
+}
+
+/// [`creepages_at`] at the point `point` = (longitudinal, lateral from the wheelset centre
+/// along the wheel's own side, rolling radius) [m], with the contact angle's (sin γ, cos γ) and
+/// the yaw's (sin ψ, cos ψ) given (the strip loops have them at hand).
+pub(super) fn creepages_with(
+    input: &WheelsetInput,
+    sigma: f64,
+    point: Vector3<f64>,
+    angle_trig: (f64, f64),
+    (sin_yaw, cos_yaw): (f64, f64),
+) -> (Creepage, f64) {
+    match input.creepages {
+        Creepages::Prescribed { creepage, vx } => (creepage, vx.abs()),
+        Creepages::Kinematic {
+            vx,
+            vy,
+            yaw_rate,
+            omega,
+        } => {
+            let speed = vx.abs().max(V_MIN);
+            // P − C in track axes: the side's lateral coordinate mirrored on the left wheel.
+            let arm = Vector3::new(point.x, sigma * point.y, point.z);
+            let angular_velocity = Vector3::new(omega * sin_yaw, -omega * cos_yaw, yaw_rate);
+            let centre_velocity = Vector3::new(vx, vy, 0.0);
+            let v = centre_velocity + angular_velocity.cross(&arm);
+            let (e_y, e_z) = contact_axes_of(sigma, angle_trig);
+            let creepage = Creepage {
+                xi: v.x / speed,
+                eta: v.dot(&e_y) / speed,
+                phi: angular_velocity.dot(&e_z) / speed,
+            };
+            (creepage, speed)
+        }
+    }
+}
+
+/// Unit vectors e_y, e_z of the contact axes at contact angle `gamma` on side `sigma` (track
+/// axes; e_x = (1, 0, 0)).
+pub(super) fn contact_axes(sigma: f64, gamma: f64) -> (Vector3<f64>, Vector3<f64>) {
+    contact_axes_of(sigma, gamma.sin_cos())
+}
+
+/// [`contact_axes`] from the angle's (sin γ, cos γ).
+pub(super) fn contact_axes_of(
+    sigma: f64,
+    (sin_g, cos_g): (f64, f64),
+) -> (Vector3<f64>, Vector3<f64>) {
+    (
+        Vector3::new(0.0, cos_g, -sigma * sin_g),
+        Vector3::new(0.0, sigma * sin_g, cos_g),
+    )
+}
+
+/// Track-axes vector of a tangential force (fx, fy) in the contact axes at angle `gamma`.
+pub(super) fn planar_tangential(sigma: f64, gamma: f64, fx: f64, fy: f64) -> Vector3<f64> {
+    tangential_in_axes(sigma, gamma.sin_cos(), fx, fy)
+}
+
+/// [`planar_tangential`] from the angle's (sin γ, cos γ): fx e_x + fy e_y.
+pub(super) fn tangential_in_axes(
+    sigma: f64,
+    angle_trig: (f64, f64),
+    fx: f64,
+    fy: f64,
+) -> Vector3<f64> {
+    let (e_y, _) = contact_axes_of(sigma, angle_trig);
+    // e_x = (1, 0, 0) and e_y has no x component.
+    Vector3::new(fx, fy * e_y.y, fy * e_y.z)
+}
+
+/// The point of strip `j` of `patch` on the wheelset for its creepages: (longitudinal,
+/// lateral, rolling radius) [m] (its contact angle enters through its sine and cosine). The
+/// longitudinal position is the patch reference point's `x_ref`, not the strip's own yaw lead:
+/// the tangential solvers measure x from the reference point and add the spin's φ_j·x along
+/// the strip themselves, so the strip's creepages must hold at x = 0 of that frame.
+pub(super) fn strip_point(patch: &StripPatch, j: usize, x_ref: f64) -> Vector3<f64> {
+    Vector3::new(
+        x_ref,
+        patch.points.lateral[j],
+        patch.points.rolling_radius[j],
+    )
+}
+
+/// The kinematics of a non-planar patch (docs/theory.md): the rigid-body motion the strips'
+/// creepages come from — the wheelset's own, or with prescribed creepages (which hold at the
+/// reference point) pure rolling at the nominal wheel radius — and its creepages at the patch's
+/// reference point.
+pub(super) struct NonPlanar {
+    kinematics: WheelsetInput,
+    sigma: f64,
+    at_reference: Creepage,
+    /// (sin ψ, cos ψ) of the yaw.
+    yaw_trig: (f64, f64),
+}
+
+impl NonPlanar {
+    pub(super) fn new(
+        input: &WheelsetInput,
+        sigma: f64,
+        wheel_radius: f64,
+        reference: &ContactPoint,
+    ) -> Self {
+        let kinematics = match input.creepages {
+            Creepages::Kinematic { .. } => *input,
+            Creepages::Prescribed { vx, .. } => {
+                let v = vx.abs().max(V_MIN);
+                WheelsetInput {
+                    creepages: Creepages::Kinematic {
+                        vx: v,
+                        vy: 0.0,
+                        yaw_rate: 0.0,
+                        omega: v / wheel_radius,
+                    },
+                    ..*input
+                }
+            }
+        };
+        let (at_reference, _) =
+            creepages_at(&kinematics, sigma, reference, reference.contact_angle);
+        Self {
+            kinematics,
+            sigma,
+            at_reference,
+            yaw_trig: input.yaw.sin_cos(),
+        }
+    }
+
+    /// The non-planar part of the creepages at strip point `point` ([`strip_point`]; lever
+    /// `lever` along e_y from the reference point; `angle_trig` its contact angle's (sin, cos)):
+    /// the strip's creepages in its own axes minus what a flat patch would give there,
+    /// (ξ_ref − φ_ref·lever, η_ref, φ_ref).
+    pub(super) fn increment(
+        &self,
+        point: Vector3<f64>,
+        lever: f64,
+        angle_trig: (f64, f64),
+    ) -> Creepage {
+        let (here, _) = creepages_with(
+            &self.kinematics,
+            self.sigma,
+            point,
+            angle_trig,
+            self.yaw_trig,
+        );
+        let there = &self.at_reference;
+        Creepage {
+            xi: here.xi - (there.xi - there.phi * lever),
+            eta: here.eta - there.eta,
+            phi: here.phi - there.phi,
+        }
+    }
+}
