@@ -6,26 +6,16 @@
 mod linked;
 
 use fmi_host::{Error, Instance, Status};
+use linked::Checked;
 use railcontact::models::hertz_contact::{generated, INFO};
 
 fn new(name: &str) -> Instance {
     linked::instantiate(&INFO, name)
 }
 
-fn init(f: &Instance) {
-    assert_eq!(f.initialize(), Status::Ok, "{:?}", f.messages());
-}
-
 /// The texts of the messages `f` logged.
 fn texts(f: &Instance) -> Vec<String> {
     f.messages().into_iter().map(|m| m.text).collect()
-}
-
-/// Every output; asserts that reading them returns OK.
-fn outputs(f: &Instance) -> Vec<f64> {
-    let (s, out) = f.read_outputs();
-    assert_eq!(s, Status::Ok, "{}: reading the outputs", f.name());
-    out
 }
 
 fn bits(x: &[Vec<f64>]) -> Vec<u64> {
@@ -58,7 +48,7 @@ fn wrong_guid_is_refused_with_a_message() {
 #[test]
 fn start_values_are_set_at_instantiation() {
     let f = new("starts");
-    init(&f);
+    f.init();
     // From modelDescription/HertzContact.json.
     assert_eq!(f.get_real("E").unwrap(), 2.1e11);
     assert_eq!(f.get_real("nu").unwrap(), 0.28);
@@ -87,21 +77,21 @@ fn rejected_value_names_variable_value_and_range_and_keeps_the_old_value() {
             "missing {want:?} in {m:?}"
         );
     }
-    init(&f);
+    f.init();
     assert_eq!(
         f.get_real("N").unwrap(),
         82000.0,
         "rejected value must not be stored"
     );
     assert_eq!(f.step(0.0, 1e-3), Status::Ok);
-    assert!(outputs(&f).iter().all(|x| x.is_finite()));
+    assert!(f.outputs().iter().all(|x| x.is_finite()));
 }
 
 #[test]
 fn call_order_misuse_is_an_error() {
     let f = new("misuse");
     assert_eq!(f.step(0.0, 1e-3), Status::Error, "DoStep before init");
-    init(&f);
+    f.init();
     assert_eq!(
         f.set_real("E", 2.0e11),
         Status::Error,
@@ -135,7 +125,7 @@ fn call_order_misuse_is_an_error() {
 #[test]
 fn unsupported_functions_log_and_fail() {
     let f = new("unsupported");
-    init(&f);
+    f.init();
     let (c, functions) = (f.component(), f.functions());
     // SAFETY: arguments are not read by the unsupported functions.
     unsafe {
@@ -159,7 +149,7 @@ fn unsupported_functions_log_and_fail() {
 #[test]
 fn reset_returns_to_start_values() {
     let f = new("reset");
-    init(&f);
+    f.init();
     assert_eq!(f.set_real("N", 1000.0), Status::Ok);
     assert_eq!(f.step(0.0, 1e-3), Status::Ok);
     assert_eq!(f.reset(), Status::Ok);
@@ -168,7 +158,7 @@ fn reset_returns_to_start_values() {
         Status::Ok,
         "parameters settable again"
     );
-    init(&f);
+    f.init();
     assert_eq!(f.get_real("N").unwrap(), 82000.0);
     assert_eq!(f.step(0.0, 1e-3), Status::Ok);
 }
@@ -176,12 +166,12 @@ fn reset_returns_to_start_values() {
 #[test]
 fn fmu_state_round_trip_is_bit_exact_and_corruption_is_rejected() {
     let f = new("state");
-    init(&f);
+    f.init();
     let drive = |k: usize| {
         let eta = -1e-4 * k as f64;
         assert_eq!(f.set_real("eta", eta), Status::Ok);
         assert_eq!(f.step(k as f64 * 1e-3, 1e-3), Status::Ok);
-        outputs(&f)
+        f.outputs()
     };
     for k in 0..3 {
         drive(k);
@@ -242,15 +232,15 @@ fn fmu_state_round_trip_is_bit_exact_and_corruption_is_rejected() {
 fn instances_are_independent() {
     let a = new("indepA");
     let b = new("indepB");
-    init(&a);
-    init(&b);
+    a.init();
+    b.init();
     assert_eq!(a.set_real("eta", -2e-3), Status::Ok);
     assert_eq!(a.step(0.0, 1e-3), Status::Ok);
     assert_eq!(b.step(0.0, 1e-3), Status::Ok);
     let alone = new("indepAlone");
-    init(&alone);
+    alone.init();
     assert_eq!(alone.step(0.0, 1e-3), Status::Ok);
-    assert_eq!(outputs(&b), outputs(&alone), "b must not see a's input");
+    assert_eq!(b.outputs(), alone.outputs(), "b must not see a's input");
 }
 
 #[test]

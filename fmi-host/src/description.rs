@@ -1,8 +1,7 @@
 //! What a host reads from `modelDescription.xml`: the GUID, the Co-Simulation model identifier,
 //! the default experiment and each variable's name, value reference, causality and type.
 //!
-//! A small reader of the generated XML, not a general XML parser: tags are found by name,
-//! attributes may be quoted with `"` or `'`, and the five predefined entities are decoded.
+//! Parsed with `roxmltree`; errors name the element or variable and what is wrong with it.
 
 use crate::Error;
 use std::collections::HashMap;
@@ -58,19 +57,20 @@ pub struct ModelDescription {
 impl ModelDescription {
     /// Reads `xml`; errors name what is missing or malformed.
     pub fn parse(xml: &str) -> Result<Self, Error> {
-        let root = element(xml, "fmiModelDescription")
-            .ok_or_else(|| invalid("no <fmiModelDescription>"))?;
-        let guid =
-            attribute(root, "guid").ok_or_else(|| invalid("<fmiModelDescription> has no guid"))?;
-        let cs = element(xml, "CoSimulation").ok_or_else(|| invalid("no <CoSimulation>"))?;
-        let model_identifier = attribute(cs, "modelIdentifier")
-            .ok_or_else(|| invalid("<CoSimulation> has no modelIdentifier"))?;
-        let default_experiment = element(xml, "DefaultExperiment")
+        let document = roxmltree::Document::parse(xml).map_err(|e| invalid(&e.to_string()))?;
+        let root = document.root_element();
+        if !root.has_tag_name("fmiModelDescription") {
+            return Err(invalid("no <fmiModelDescription>"));
+        }
+        let guid = required(root, "guid")?;
+        let cs = child(root, "CoSimulation").ok_or_else(|| invalid("no <CoSimulation>"))?;
+        let model_identifier = required(cs, "modelIdentifier")?;
+        let default_experiment = child(root, "DefaultExperiment")
             .map(default_experiment)
             .transpose()?;
-        let variables = xml
-            .split("<ScalarVariable")
-            .skip(1)
+        let variables = child(root, "ModelVariables")
+            .into_iter()
+            .flat_map(|list| list.children().filter(|n| n.has_tag_name("ScalarVariable")))
             .map(variable)
             .collect::<Result<Vec<_>, _>>()?;
         let mut by_name = HashMap::with_capacity(variables.len());
@@ -116,9 +116,25 @@ fn invalid(reason: &str) -> Error {
     Error::ModelDescription(reason.to_string())
 }
 
-fn default_experiment(tag: &str) -> Result<DefaultExperiment, Error> {
+type Node<'a> = roxmltree::Node<'a, 'a>;
+
+/// The first child element `name` of `parent`.
+fn child<'a>(parent: Node<'a>, name: &str) -> Option<Node<'a>> {
+    parent.children().find(|n| n.has_tag_name(name))
+}
+
+/// Attribute `key` of `element`, which must have it.
+fn required(element: Node<'_>, key: &str) -> Result<String, Error> {
+    element
+        .attribute(key)
+        .map(str::to_string)
+        .ok_or_else(|| invalid(&format!("<{}> has no {key}", element.tag_name().name())))
+}
+
+fn default_experiment(element: Node<'_>) -> Result<DefaultExperiment, Error> {
     let number = |key: &str| -> Result<Option<f64>, Error> {
-        attribute(tag, key)
+        element
+            .attribute(key)
             .map(|text| {
                 text.trim().parse().map_err(|_| {
                     invalid(&format!(
@@ -135,33 +151,30 @@ fn default_experiment(tag: &str) -> Result<DefaultExperiment, Error> {
     })
 }
 
-/// One variable from the text after `<ScalarVariable` (its attributes, then its type element).
-fn variable(chunk: &str) -> Result<Variable, Error> {
-    let end = tag_end(chunk).ok_or_else(|| invalid("unterminated <ScalarVariable>"))?;
-    let tag = &chunk[..end];
-    let name = attribute(tag, "name").ok_or_else(|| invalid("a <ScalarVariable> has no name"))?;
-    let vr_text = attribute(tag, "valueReference")
+/// One `<ScalarVariable>`: its attributes and the name of its type element.
+fn variable(element: Node<'_>) -> Result<Variable, Error> {
+    let name = element
+        .attribute("name")
+        .ok_or_else(|| invalid("a <ScalarVariable> has no name"))?
+        .to_string();
+    let vr_text = element
+        .attribute("valueReference")
         .ok_or_else(|| invalid(&format!("variable {name:?} has no valueReference")))?;
     let vr = vr_text.trim().parse().map_err(|_| {
         invalid(&format!(
             "variable {name:?}: valueReference = {vr_text:?} is not an unsigned 32-bit integer"
         ))
     })?;
-    let causality_text = attribute(tag, "causality").unwrap_or_else(|| "local".to_string());
-    let causality = causality_of(&causality_text).ok_or_else(|| {
+    let causality_text = element.attribute("causality").unwrap_or("local");
+    let causality = causality_of(causality_text).ok_or_else(|| {
         invalid(&format!(
             "variable {name:?}: unknown causality {causality_text:?}"
         ))
     })?;
-    let type_name = chunk[end + 1..]
-        .trim_start()
-        .strip_prefix('<')
-        .map(|rest| {
-            rest.split(|c: char| c.is_whitespace() || c == '/' || c == '>')
-                .next()
-                .unwrap_or("")
-        })
-        .unwrap_or("");
+    let type_name = element
+        .children()
+        .find(roxmltree::Node::is_element)
+        .map_or("", |n| n.tag_name().name());
     let ty = type_of(type_name).ok_or_else(|| {
         invalid(&format!(
             "variable {name:?}: unknown type element <{type_name}>"
@@ -196,59 +209,6 @@ fn type_of(element: &str) -> Option<VarType> {
         "Enumeration" => VarType::Enumeration,
         _ => return None,
     })
-}
-
-/// The attributes of the first element `<name …>` of `xml` (the text up to its `>`).
-fn element<'a>(xml: &'a str, name: &str) -> Option<&'a str> {
-    let open = format!("<{name}");
-    let mut from = 0;
-    while let Some(i) = xml[from..].find(&open) {
-        let rest = &xml[from + i + open.len()..];
-        if rest.starts_with(|c: char| c.is_whitespace() || c == '>' || c == '/') {
-            return Some(&rest[..tag_end(rest)?]);
-        }
-        from += i + open.len();
-    }
-    None
-}
-
-/// The position of the `>` that ends a tag, outside quoted attribute values.
-fn tag_end(tag: &str) -> Option<usize> {
-    let mut quote = None;
-    for (i, c) in tag.char_indices() {
-        match (quote, c) {
-            (None, '"' | '\'') => quote = Some(c),
-            (Some(q), _) if c == q => quote = None,
-            (None, '>') => return Some(i),
-            _ => {}
-        }
-    }
-    None
-}
-
-/// The decoded value of attribute `key` in the text of one tag.
-fn attribute(tag: &str, key: &str) -> Option<String> {
-    let mut rest = tag;
-    while let Some(eq) = rest.find('=') {
-        let name = rest[..eq].split_whitespace().last().unwrap_or("");
-        let value = rest[eq + 1..].trim_start();
-        let quote = value.chars().next().filter(|c| *c == '"' || *c == '\'')?;
-        let len = value[1..].find(quote)?;
-        if name == key {
-            return Some(unescape(&value[1..1 + len]));
-        }
-        rest = &value[len + 2..];
-    }
-    None
-}
-
-/// The five predefined XML entities (`&amp;` last, so `&amp;lt;` stays `&lt;`).
-fn unescape(text: &str) -> String {
-    text.replace("&quot;", "\"")
-        .replace("&apos;", "'")
-        .replace("&lt;", "<")
-        .replace("&gt;", ">")
-        .replace("&amp;", "&")
 }
 
 #[cfg(test)]
@@ -301,7 +261,6 @@ mod tests {
             md.variable("right.Q").unwrap_err().to_string(),
             "Model has no variable \"right.Q\""
         );
-        assert_eq!(unescape("a&amp;lt;b"), "a&lt;b");
     }
 
     #[test]
@@ -309,6 +268,7 @@ mod tests {
         let bad_vr = XML.replace("valueReference=\"7\"", "valueReference=\"-7\"");
         let no_cs = XML.replace("<CoSimulation", "<ModelExchange");
         let twice = XML.replace("name=\"profile\"", "name=\"left.Q\"");
+        let no_guid = XML.replace("guid=\"{1234}\"", "");
         for (xml, reason) in [
             (
                 bad_vr.as_str(),
@@ -317,6 +277,7 @@ mod tests {
             (no_cs.as_str(), "no <CoSimulation>"),
             (twice.as_str(), "variable \"left.Q\" is declared twice"),
             ("<fmi/>", "no <fmiModelDescription>"),
+            (no_guid.as_str(), "<fmiModelDescription> has no guid"),
         ] {
             let error = ModelDescription::parse(xml).unwrap_err().to_string();
             assert!(

@@ -51,6 +51,7 @@ from fmpy.fmi2 import (
 )
 from fmpy.logging import addLoggerProxy
 from fmpy.model_description import ModelDescription, read_model_description
+from fmpy.validation import validate_fmu
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 FMU_FILE_NAME = "HertzContact.fmu"
@@ -107,6 +108,51 @@ def packed_fmu(file_name: str) -> Path:
     return path
 
 
+def validated_description(path: Path) -> ModelDescription:
+    """The FMU's modelDescription.xml, parsed (and XSD-validated) by FMPy."""
+    return read_model_description(str(path), validate=True)
+
+
+def extracted(path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The FMU extracted once per session; every FMU2Slave of the session loads it from here."""
+    target = tmp_path_factory.mktemp(f"{path.stem}_unzipped")
+    return Path(fmpy.extract(str(path), unzipdir=str(target)))
+
+
+def linux64_library(unzipdir: Path, md: ModelDescription) -> Path:
+    """The FMU's linux64 shared library inside the extracted FMU; fails when it is missing."""
+    identifier = md.coSimulation.modelIdentifier
+    path = unzipdir / "binaries" / "linux64" / f"{identifier}.so"
+    if not path.is_file():
+        pytest.fail(f"the FMU has no binaries/linux64/{identifier}.so", pytrace=False)
+    return path
+
+
+def assert_fmpy_validates(path: Path) -> None:
+    """FMPy's validation, by its command line and its API, finds no problem in the FMU."""
+    # FMPy 0.3.32's command line is `fmpy.cli` (`fmpy.command_line` does not exist in 0.3.32);
+    # it exits with the number of problems.
+    proc = subprocess.run(
+        [sys.executable, "-m", "fmpy.cli", "validate", str(path)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert proc.returncode == 0, f"fmpy validate: exit {proc.returncode}\n{proc.stdout}\n{proc.stderr}"
+    assert "No problems found" in proc.stdout
+    assert validate_fmu(str(path)) == []
+
+
+def assert_exports_exactly_the_34_fmi2_functions(library: Path) -> None:
+    """The library's dynamic symbols starting with fmi2 (``nm -D``) are the standard's 34."""
+    nm = require_tool("nm")
+    out = subprocess.run([nm, "-D", "--defined-only", str(library)], capture_output=True, text=True, check=True).stdout
+    symbols = [line.split()[-1] for line in out.splitlines() if line.strip()]
+    fmi2 = sorted(s for s in symbols if s.startswith("fmi2"))
+    assert len(fmi2) == 34, fmi2
+    assert set(fmi2) == EXPECTED_FMI2_EXPORTS
+
+
 @pytest.fixture(scope="session")
 def fmu_path() -> Path:
     """Path of the packed HertzContact FMU."""
@@ -115,25 +161,17 @@ def fmu_path() -> Path:
 
 @pytest.fixture(scope="session")
 def model_description(fmu_path: Path) -> ModelDescription:
-    """The FMU's modelDescription.xml, parsed (and XSD-validated) by FMPy."""
-    return read_model_description(str(fmu_path), validate=True)
+    return validated_description(fmu_path)
 
 
 @pytest.fixture(scope="session")
 def unzipdir(fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The FMU extracted once per session; every FMU2Slave of the session loads it from here."""
-    target = tmp_path_factory.mktemp("HertzContact_unzipped")
-    return Path(fmpy.extract(str(fmu_path), unzipdir=str(target)))
+    return extracted(fmu_path, tmp_path_factory)
 
 
 @pytest.fixture(scope="session")
 def shared_library(unzipdir: Path, model_description: ModelDescription) -> Path:
-    """The FMU's linux64 shared library inside the extracted FMU."""
-    identifier = model_description.coSimulation.modelIdentifier
-    path = unzipdir / "binaries" / "linux64" / f"{identifier}.so"
-    if not path.is_file():
-        pytest.fail(f"the FMU has no binaries/linux64/{identifier}.so", pytrace=False)
-    return path
+    return linux64_library(unzipdir, model_description)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -148,13 +186,17 @@ def wrc_fmu_path() -> Path:
 
 @pytest.fixture(scope="session")
 def wrc_model_description(wrc_fmu_path: Path) -> ModelDescription:
-    return read_model_description(str(wrc_fmu_path), validate=True)
+    return validated_description(wrc_fmu_path)
 
 
 @pytest.fixture(scope="session")
 def wrc_unzipdir(wrc_fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
-    target = tmp_path_factory.mktemp("WheelRailContact_unzipped")
-    return Path(fmpy.extract(str(wrc_fmu_path), unzipdir=str(target)))
+    return extracted(wrc_fmu_path, tmp_path_factory)
+
+
+@pytest.fixture(scope="session")
+def wrc_shared_library(wrc_unzipdir: Path, wrc_model_description: ModelDescription) -> Path:
+    return linux64_library(wrc_unzipdir, wrc_model_description)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -195,22 +237,38 @@ def bundled_fmu_dir(tmp_path_factory: pytest.TempPathFactory) -> PackerRun:
 
 
 # ---------------------------------------------------------------------------------------------
-# Ecos (ecospy), in a subprocess
+# Co-simulation engines, each in a subprocess (libcosim aborts its process when the FMU returns
+# fmi2Error from fmi2GetReal; Ecos is kept apart the same way)
 
 
-def run_ecos(config: dict, tmp_path: Path) -> tuple[dict, str]:
-    """Runs ecos_driver.py on `config`; returns its result and its output (Ecos's log)."""
-    config_path, result_path = tmp_path / "ecos_config.json", tmp_path / "ecos_result.json"
+def run_driver(script: str, config: dict, tmp_path: Path) -> tuple[subprocess.CompletedProcess, dict | None]:
+    """Runs the driver `script` (beside this file) on `config`; returns the finished process and
+    the result it wrote (None if it wrote none)."""
+    stem = script.split("_")[0]
+    config_path, result_path = tmp_path / f"{stem}_config.json", tmp_path / f"{stem}_result.json"
     config_path.write_text(json.dumps(config), encoding="utf-8")
     proc = subprocess.run(
-        [sys.executable, str(Path(__file__).resolve().parent / "ecos_driver.py"), str(config_path), str(result_path)],
+        [sys.executable, str(Path(__file__).resolve().parent / script), str(config_path), str(result_path)],
         capture_output=True,
         text=True,
         timeout=300,
     )
+    result = json.loads(result_path.read_text(encoding="utf-8")) if result_path.is_file() else None
+    return proc, result
+
+
+def run_libcosim(config: dict, tmp_path: Path) -> tuple[subprocess.CompletedProcess, dict | None]:
+    """Runs libcosim_driver.py (libcosimpy) on `config`."""
+    return run_driver("libcosim_driver.py", config, tmp_path)
+
+
+def run_ecos(config: dict, tmp_path: Path) -> tuple[dict, str]:
+    """Runs ecos_driver.py on `config`; returns its result and its output (Ecos's log)."""
+    proc, result = run_driver("ecos_driver.py", config, tmp_path)
     log = proc.stdout + proc.stderr
     assert proc.returncode == 0, f"Ecos driver died (exit {proc.returncode}):\n{log[-4000:]}"
-    return json.loads(result_path.read_text(encoding="utf-8")), log
+    assert result is not None, f"Ecos driver wrote no result:\n{log[-4000:]}"
+    return result, log
 
 
 # ---------------------------------------------------------------------------------------------

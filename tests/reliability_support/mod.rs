@@ -1,7 +1,6 @@
 //! Shared driver of the reliability and soak tests (`tests/reliability.rs`, `tests/soak.rs`):
-//! instances of the linked FMUs (`tests/linked`) driven by the `fmi_host` harness, checked
-//! reads that name the instance and its logged errors, and a seeded random walk of the
-//! `WheelRailContact` inputs.
+//! the linked FMUs and checked reads of `tests/linked`, a seeded random walk of the
+//! `WheelRailContact` inputs and the resident set size.
 //!
 //! The harness returns every `fmi2Status` to the test, which asserts it.
 
@@ -10,120 +9,13 @@
 use railcontact::fmi::model::ModelInfo;
 use railcontact::fmi::variables::VarInfo;
 
-pub use crate::linked::instantiate;
-#[allow(unused_imports)] // soak.rs checks no discard
-pub use fmi_host::Status::{Discard as DISCARD, Error as ERROR, Ok as OK, Warning as WARNING};
+pub use crate::linked::{instantiate, Checked, DISCARD, ERROR, OK, WARNING};
 pub use fmi_host::{Instance, Status};
 
 /// The variable `name` of `info`; panics in the test (never in the FMU) if it does not exist.
 pub fn var(info: &ModelInfo, name: &str) -> &'static VarInfo {
     info.variable(name)
         .unwrap_or_else(|| panic!("{} has no variable {name}", info.model_identifier))
-}
-
-/// Reads and log checks that assert, naming the instance and what it logged.
-pub trait Checked {
-    /// The value of a Real variable; asserts that `fmi2GetReal` returns OK.
-    fn real(&self, name: &str) -> f64;
-    /// The value of an Integer variable; asserts that `fmi2GetInteger` returns OK.
-    fn integer(&self, name: &str) -> i32;
-    /// All outputs ([`Instance::read_outputs`]); asserts OK and that every value is finite.
-    fn outputs(&self) -> Vec<f64>;
-    /// Asserts that every output value is finite, naming the first that is not.
-    fn assert_finite(&self, out: &[f64]);
-    /// Set-up, enter and exit initialization mode; asserts OK.
-    fn init(&self);
-    /// The texts of the messages logged with `fmi2Error` (or worse).
-    fn errors(&self) -> Vec<String>;
-    /// The texts of the messages logged with `fmi2Warning`.
-    fn warnings(&self) -> Vec<String>;
-    /// Asserts that some warning contains every one of `parts`.
-    fn assert_warning_logged(&self, parts: &[&str]);
-    /// Asserts that some error message contains every one of `parts`.
-    fn assert_error_logged(&self, parts: &[&str]);
-}
-
-impl Checked for Instance {
-    #[track_caller]
-    fn real(&self, name: &str) -> f64 {
-        self.get_real(name).unwrap_or_else(|e| panic!("{e}"))
-    }
-
-    #[track_caller]
-    fn integer(&self, name: &str) -> i32 {
-        self.get_integer(name).unwrap_or_else(|e| panic!("{e}"))
-    }
-
-    #[track_caller]
-    fn outputs(&self) -> Vec<f64> {
-        let (s, out) = self.read_outputs();
-        assert_eq!(
-            s,
-            OK,
-            "{}: reading the outputs: {:?}",
-            self.name(),
-            self.errors()
-        );
-        self.assert_finite(&out);
-        out
-    }
-
-    #[track_caller]
-    fn assert_finite(&self, out: &[f64]) {
-        if let Some(i) = out.iter().position(|x| !x.is_finite()) {
-            let names = self.output_names();
-            panic!("{}: output {} = {}", self.name(), names[i], out[i]);
-        }
-    }
-
-    #[track_caller]
-    fn init(&self) {
-        let s = self.initialize();
-        assert_eq!(
-            s,
-            OK,
-            "{}: initialization: {:?}",
-            self.name(),
-            self.errors()
-        );
-    }
-
-    fn errors(&self) -> Vec<String> {
-        logged(self, |s| s >= ERROR)
-    }
-
-    fn warnings(&self) -> Vec<String> {
-        logged(self, |s| s == WARNING)
-    }
-
-    #[track_caller]
-    fn assert_warning_logged(&self, parts: &[&str]) {
-        let warnings = self.warnings();
-        assert!(
-            warnings.iter().any(|m| parts.iter().all(|p| m.contains(p))),
-            "{}: no warning containing all of {parts:?}; warnings: {warnings:#?}",
-            self.name()
-        );
-    }
-
-    #[track_caller]
-    fn assert_error_logged(&self, parts: &[&str]) {
-        let errors = self.errors();
-        assert!(
-            errors.iter().any(|m| parts.iter().all(|p| m.contains(p))),
-            "{}: no error message containing all of {parts:?}; errors: {errors:#?}",
-            self.name()
-        );
-    }
-}
-
-/// The texts of the messages of `f` whose status passes `keep`.
-fn logged(f: &Instance, keep: impl Fn(Status) -> bool) -> Vec<String> {
-    f.messages()
-        .into_iter()
-        .filter(|m| keep(m.status))
-        .map(|m| m.text)
-        .collect()
 }
 
 /// SplitMix64: a small deterministic generator for seeded input sequences.
