@@ -17,6 +17,8 @@
 mod linked;
 mod reliability_support;
 
+use fmi_host::{Instance, Status};
+use linked::*;
 use railcontact::fmi::model::ModelInfo;
 use railcontact::fmi::variables::{Causality, Start, VarType};
 use railcontact::models::{hertz_contact, wheel_rail_contact};

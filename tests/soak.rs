@@ -15,6 +15,7 @@
 mod linked;
 mod reliability_support;
 
+use linked::*;
 use railcontact::fmi::variables::{Causality, VarType};
 use railcontact::models::wheel_rail_contact::INFO;
 use reliability_support::*;

@@ -9,6 +9,7 @@ use fmi_host::{Fmu, Instance, Status};
 use railcontact::fmi::model::ModelInfo;
 use std::sync::Arc;
 
+#[allow(unused_imports)] // each test crate asserts a different set of statuses
 pub use fmi_host::Status::{Discard as DISCARD, Error as ERROR, Ok as OK, Warning as WARNING};
 
 /// The resource location of linked instances: the `file:` URI of a directory that does not

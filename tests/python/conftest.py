@@ -9,14 +9,17 @@ tests are the acceptance gate of the packed FMUs.
 ``bundled_fmu_dir`` packs a second set with the benchmark profiles in ``resources/`` by running
 the packer's command (``cargo run --release -p fmu-pack -- --resource … --out DIR``); the
 benchmark files come from ``tests/data`` (``data_file``).
-``run_ecos`` runs ``ecos_driver.py`` (the Ecos host, in a subprocess).
+
+``run_libcosim`` and ``run_ecos`` run ``libcosim_driver.py`` and ``ecos_driver.py`` (the libcosim
+and Ecos hosts, each in a subprocess).
 
 The fixtures ``fmu_path``, ``model_description``, ``unzipdir`` and ``shared_library`` are those
-of HertzContact (``test_hertz_contact.py``); ``wrc_fmu_path``, ``wrc_model_description`` and
-``wrc_unzipdir`` those of WheelRailContact (``test_wheel_rail_contact.py``). The helpers both
-modules use live here: ``bits``, the log router ``LOG`` (one per process — FMPy's native logger
-proxy keeps a single Python logger in a static variable, so two routers would steal each other's
-messages) and the ``Slave`` wrapper.
+of HertzContact (``test_hertz_contact.py``); ``wrc_fmu_path``, ``wrc_model_description``,
+``wrc_unzipdir`` and ``wrc_shared_library`` those of WheelRailContact
+(``test_wheel_rail_contact.py``). The checks and helpers both modules use live here:
+``assert_fmpy_validates``, ``assert_exports_exactly_the_34_fmi2_functions``, ``bits``, the log
+router ``LOG`` (one per process — FMPy's native logger proxy keeps a single Python logger in a
+static variable, so two routers would steal each other's messages) and the ``Slave`` wrapper.
 """
 
 from __future__ import annotations
@@ -56,6 +59,7 @@ from fmpy.validation import validate_fmu
 REPO_ROOT = Path(__file__).resolve().parents[2]
 FMU_FILE_NAME = "HertzContact.fmu"
 WRC_FMU_FILE_NAME = "WheelRailContact.fmu"
+FMU_FILE_NAMES = (FMU_FILE_NAME, WRC_FMU_FILE_NAME)
 FMU_DIR_ENV = "RAILCONTACT_FMU_DIR"
 
 STEP = 1e-3  # s; the default experiments' step size (both models)
@@ -153,50 +157,34 @@ def assert_exports_exactly_the_34_fmi2_functions(library: Path) -> None:
     assert set(fmi2) == EXPECTED_FMI2_EXPORTS
 
 
-@pytest.fixture(scope="session")
-def fmu_path() -> Path:
-    """Path of the packed HertzContact FMU."""
-    return packed_fmu(FMU_FILE_NAME)
+def packed_fmu_fixtures(prefix: str, file_name: str):
+    """The session fixtures of one packed FMU, named ``{prefix}fmu_path`` (its path),
+    ``{prefix}model_description``, ``{prefix}unzipdir`` (extracted once) and
+    ``{prefix}shared_library`` (its linux64 library)."""
+
+    @pytest.fixture(scope="session", name=f"{prefix}fmu_path")
+    def path_fixture() -> Path:
+        return packed_fmu(file_name)
+
+    @pytest.fixture(scope="session", name=f"{prefix}model_description")
+    def description_fixture(request: pytest.FixtureRequest) -> ModelDescription:
+        return validated_description(request.getfixturevalue(f"{prefix}fmu_path"))
+
+    @pytest.fixture(scope="session", name=f"{prefix}unzipdir")
+    def unzipdir_fixture(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory) -> Path:
+        return extracted(request.getfixturevalue(f"{prefix}fmu_path"), tmp_path_factory)
+
+    @pytest.fixture(scope="session", name=f"{prefix}shared_library")
+    def library_fixture(request: pytest.FixtureRequest) -> Path:
+        unzipped = request.getfixturevalue(f"{prefix}unzipdir")
+        return linux64_library(unzipped, request.getfixturevalue(f"{prefix}model_description"))
+
+    return path_fixture, description_fixture, unzipdir_fixture, library_fixture
 
 
-@pytest.fixture(scope="session")
-def model_description(fmu_path: Path) -> ModelDescription:
-    return validated_description(fmu_path)
-
-
-@pytest.fixture(scope="session")
-def unzipdir(fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return extracted(fmu_path, tmp_path_factory)
-
-
-@pytest.fixture(scope="session")
-def shared_library(unzipdir: Path, model_description: ModelDescription) -> Path:
-    return linux64_library(unzipdir, model_description)
-
-
-# ---------------------------------------------------------------------------------------------
-# WheelRailContact
-
-
-@pytest.fixture(scope="session")
-def wrc_fmu_path() -> Path:
-    """Path of the packed WheelRailContact FMU."""
-    return packed_fmu(WRC_FMU_FILE_NAME)
-
-
-@pytest.fixture(scope="session")
-def wrc_model_description(wrc_fmu_path: Path) -> ModelDescription:
-    return validated_description(wrc_fmu_path)
-
-
-@pytest.fixture(scope="session")
-def wrc_unzipdir(wrc_fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return extracted(wrc_fmu_path, tmp_path_factory)
-
-
-@pytest.fixture(scope="session")
-def wrc_shared_library(wrc_unzipdir: Path, wrc_model_description: ModelDescription) -> Path:
-    return linux64_library(wrc_unzipdir, wrc_model_description)
+# HertzContact (test_hertz_contact.py) and WheelRailContact (test_wheel_rail_contact.py).
+fmu_path, model_description, unzipdir, shared_library = packed_fmu_fixtures("", FMU_FILE_NAME)
+wrc_fmu_path, wrc_model_description, wrc_unzipdir, wrc_shared_library = packed_fmu_fixtures("wrc_", WRC_FMU_FILE_NAME)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -9,9 +9,6 @@
 use railcontact::fmi::model::ModelInfo;
 use railcontact::fmi::variables::VarInfo;
 
-pub use crate::linked::{instantiate, Checked, DISCARD, ERROR, OK, WARNING};
-pub use fmi_host::{Instance, Status};
-
 /// The variable `name` of `info`; panics in the test (never in the FMU) if it does not exist.
 pub fn var(info: &ModelInfo, name: &str) -> &'static VarInfo {
     info.variable(name)
