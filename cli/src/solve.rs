@@ -45,7 +45,12 @@ pub fn solve(values: &mut Values, extras: Extras) -> Result<(Value, Option<Strin
     let tables = strip_tables(&wheelset, &patches);
     let strips = tables
         .iter()
-        .map(|(name, table)| (name.clone(), table.iter().map(Strip::to_json).collect()))
+        .map(|(name, table)| {
+            (
+                name.clone(),
+                table.iter().copied().map(Strip::to_json).collect(),
+            )
+        })
         .collect();
     doc.insert("strips".into(), Value::Object(strips));
     if let Some(nx) = extras.grid {
@@ -218,7 +223,7 @@ pub struct Strip {
 }
 
 impl Strip {
-    fn to_json(&self) -> Value {
+    fn to_json(self) -> Value {
         json!({
             "s": self.s,
             "yRail": self.y_rail,

@@ -35,8 +35,9 @@
 
 use crate::geometry::profile::bounds::HeightBounds;
 use crate::geometry::profile::Profile;
-use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::geometry::strips::{PerStrip, StripGeometry, MAX_STRIPS};
 use crate::geometry::track::{GeometryError, MountedRail, TrackSetup};
+use crate::numeric::roots::Illinois;
 
 /// Largest number of separate contact candidates kept per wheel.
 pub const MAX_CANDIDATES: usize = 8;
@@ -449,41 +450,28 @@ impl ContactPlane {
 }
 
 /// Points of the strips of a patch, for outputs and the tangential problem.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct StripPoints {
     /// Lateral coordinate of the rail point in the mounted rail frame [m].
-    pub y_rail: [f64; MAX_STRIPS],
+    pub y_rail: PerStrip<f64>,
     /// Slope dz/dw of the rail (wheelset frame) at the strip's point: the local contact angle
     /// (positive towards the flange) is γ = −atan z' ([`StripPoints::contact_angle`]; computed
     /// where needed, the strips themselves need only its sine and cosine).
-    pub rail_slope: [f64; MAX_STRIPS],
+    pub rail_slope: PerStrip<f64>,
     /// Sine and cosine of the contact angle (from the rail's slope, no trigonometry: the
     /// tangential problem needs them per strip).
-    pub sin_angle: [f64; MAX_STRIPS],
-    pub cos_angle: [f64; MAX_STRIPS],
+    pub sin_angle: PerStrip<f64>,
+    pub cos_angle: PerStrip<f64>,
     /// Rolling radius of the wheel point [m].
-    pub rolling_radius: [f64; MAX_STRIPS],
+    pub rolling_radius: PerStrip<f64>,
     /// Lateral coordinate of the rail point (wheelset frame) [m].
-    pub lateral: [f64; MAX_STRIPS],
+    pub lateral: PerStrip<f64>,
 }
 
 impl StripPoints {
     /// Local contact angle γ = −atan z' of strip `j` (positive towards the flange) [rad].
     pub fn contact_angle(&self, j: usize) -> f64 {
         -self.rail_slope[j].atan()
-    }
-}
-
-impl Default for StripPoints {
-    fn default() -> Self {
-        Self {
-            y_rail: [0.0; MAX_STRIPS],
-            rail_slope: [0.0; MAX_STRIPS],
-            sin_angle: [0.0; MAX_STRIPS],
-            cos_angle: [0.0; MAX_STRIPS],
-            rolling_radius: [0.0; MAX_STRIPS],
-            lateral: [0.0; MAX_STRIPS],
-        }
     }
 }
 
@@ -1222,31 +1210,18 @@ impl WheelOnRail {
         p: &Prepared,
     ) -> (f64, GapSample) {
         if lo.slope < 0.0 && hi.slope > 0.0 {
-            let ((mut a, mut slope_a), (mut b, mut slope_b)) = ((a, lo.slope), (b, hi.slope));
+            let mut bracket = Illinois::new((a, lo.slope), (b, hi.slope));
             let mut w = a;
-            let mut side = 0i8;
             for _ in 0..REFINE_STEPS {
-                let next = (a * slope_b - b * slope_a) / (slope_b - slope_a);
+                let next = bracket.secant();
                 let moved = (next - w).abs();
                 w = next;
                 let s = self.sample(w, p);
                 // 1e−10 m: the secant's error is then far smaller still (superlinear).
-                if s.slope == 0.0 || moved < 1e-10 || b - a < 1e-10 {
-                    return self.accept_refined(w, s, (a, b), mid, p);
+                if s.slope == 0.0 || moved < 1e-10 || bracket.width() < 1e-10 {
+                    return self.accept_refined(w, s, (bracket.neg.0, bracket.pos.0), mid, p);
                 }
-                if s.slope < 0.0 {
-                    (a, slope_a) = (w, s.slope);
-                    if side < 0 {
-                        slope_b *= 0.5;
-                    }
-                    side = -1;
-                } else {
-                    (b, slope_b) = (w, s.slope);
-                    if side > 0 {
-                        slope_a *= 0.5;
-                    }
-                    side = 1;
-                }
+                bracket.update(w, s.slope);
             }
         }
         self.golden_section(a, b, p)
@@ -1316,30 +1291,18 @@ impl WheelOnRail {
     fn refine_ridge(&self, a: f64, b: f64, p: &Prepared) -> (f64, GapSample) {
         let (sa, sb) = (self.sample(a, p), self.sample(b, p));
         if sa.slope > 0.0 && sb.slope < 0.0 {
-            let ((mut a, mut slope_a), (mut b, mut slope_b)) = ((a, sa.slope), (b, sb.slope));
+            // The slope decreases through the ridge: the bracket holds its negative.
+            let mut bracket = Illinois::new((a, -sa.slope), (b, -sb.slope));
             let mut w = a;
-            let mut side = 0i8;
             for _ in 0..REFINE_STEPS {
-                let next = (a * slope_b - b * slope_a) / (slope_b - slope_a);
+                let next = bracket.secant();
                 let moved = (next - w).abs();
                 w = next;
                 let s = self.sample(w, p);
-                if s.slope == 0.0 || moved < 1e-10 || b - a < 1e-10 {
+                if s.slope == 0.0 || moved < 1e-10 || bracket.width() < 1e-10 {
                     return (w, s);
                 }
-                if s.slope > 0.0 {
-                    (a, slope_a) = (w, s.slope);
-                    if side < 0 {
-                        slope_b *= 0.5;
-                    }
-                    side = -1;
-                } else {
-                    (b, slope_b) = (w, s.slope);
-                    if side > 0 {
-                        slope_a *= 0.5;
-                    }
-                    side = 1;
-                }
+                bracket.update(w, -s.slope);
             }
             return (w, self.sample(w, p));
         }
@@ -1753,37 +1716,17 @@ impl WheelOnRail {
         }
     }
 
-    /// Root of gap(w) − `level` between a (below) and b (at or above) by Illinois to 1e−10 m.
-    fn level_root(
-        &self,
-        (mut a, mut fa): (f64, f64),
-        (mut b, mut fb): (f64, f64),
-        level: f64,
-    ) -> f64 {
-        let mut side = 0i8;
-        let mut w = b;
+    /// Root of gap(w) − `level` between the lateral `below` and the lateral `at_or_above` (each
+    /// with its gap − level) by Illinois to 1e−10 m.
+    fn level_root(&self, below: (f64, f64), at_or_above: (f64, f64), level: f64) -> f64 {
+        let mut bracket = Illinois::new(below, at_or_above);
+        let mut w = at_or_above.0;
         for _ in 0..60 {
-            if (b - a).abs() < 1e-10 || fb == 0.0 {
-                return b;
+            if bracket.width() < 1e-10 || bracket.pos.1 == 0.0 {
+                return bracket.pos.0;
             }
-            w = (a * fb - b * fa) / (fb - fa);
-            if !w.is_finite() || (w - a) * (w - b) > 0.0 {
-                w = 0.5 * (a + b);
-            }
-            let fw = self.gap_at(w) - level;
-            if fw < 0.0 {
-                (a, fa) = (w, fw);
-                if side < 0 {
-                    fb *= 0.5;
-                }
-                side = -1;
-            } else {
-                (b, fb) = (w, fw);
-                if side > 0 {
-                    fa *= 0.5;
-                }
-                side = 1;
-            }
+            w = bracket.inside_or_midpoint(bracket.secant());
+            bracket.update(w, self.gap_at(w) - level);
         }
         w
     }

@@ -10,8 +10,32 @@
 /// Largest number of strips per patch.
 pub const MAX_STRIPS: usize = 200;
 
+/// One value per strip in a fixed-size buffer of [`MAX_STRIPS`] (no allocation per step):
+/// indexes, slices and iterates as `[T]`, and defaults to `T::default()` on every strip.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PerStrip<T>(pub [T; MAX_STRIPS]);
+
+impl<T: Copy + Default> Default for PerStrip<T> {
+    fn default() -> Self {
+        Self([T::default(); MAX_STRIPS])
+    }
+}
+
+impl<T> std::ops::Deref for PerStrip<T> {
+    type Target = [T];
+    fn deref(&self) -> &[T] {
+        &self.0
+    }
+}
+
+impl<T> std::ops::DerefMut for PerStrip<T> {
+    fn deref_mut(&mut self) -> &mut [T] {
+        &mut self.0
+    }
+}
+
 /// The undeformed geometry of one patch on its strips (independent of the approach δ).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct StripGeometry {
     /// Number of strips in use (≤ [`MAX_STRIPS`]).
     pub n: usize,
@@ -19,30 +43,16 @@ pub struct StripGeometry {
     pub ds: f64,
     /// Strip centre s_i: lateral coordinate in the contact plane from the patch's first-contact
     /// point, positive towards the field side [m]. Increasing with i.
-    pub s: [f64; MAX_STRIPS],
+    pub s: PerStrip<f64>,
     /// Undeformed normal gap f(s_i) at the strip's locus, measured from the first-contact point
     /// (f = 0 at s = 0, f ≥ 0 across the patch) [m].
-    pub f: [f64; MAX_STRIPS],
+    pub f: PerStrip<f64>,
     /// Relative longitudinal curvature A(s_i) > 0 [1/m].
-    pub curv_a: [f64; MAX_STRIPS],
+    pub curv_a: PerStrip<f64>,
     /// Relative lateral curvature B(s_i) = ½ f''(s_i), raw: may be zero or negative [1/m].
-    pub curv_b: [f64; MAX_STRIPS],
+    pub curv_b: PerStrip<f64>,
     /// Longitudinal position x_c(s_i) of the gap minimum along the strip (yaw lead) [m].
-    pub x_c: [f64; MAX_STRIPS],
-}
-
-impl Default for StripGeometry {
-    fn default() -> Self {
-        Self {
-            n: 0,
-            ds: 0.0,
-            s: [0.0; MAX_STRIPS],
-            f: [0.0; MAX_STRIPS],
-            curv_a: [0.0; MAX_STRIPS],
-            curv_b: [0.0; MAX_STRIPS],
-            x_c: [0.0; MAX_STRIPS],
-        }
-    }
+    pub x_c: PerStrip<f64>,
 }
 
 impl StripGeometry {

@@ -18,6 +18,7 @@
 
 use crate::error::{require_positive, InputError};
 use crate::geometry::profile::{Profile, ProfileKind};
+use crate::numeric::roots::bisect;
 
 /// Track and wheelset dimensions [m, rad].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -228,16 +229,7 @@ fn gauge_point(profile: &Profile, from: f64, depth: f64) -> Option<f64> {
     while right > y_min {
         let left = (right - step).max(y_min);
         if profile.z(left) >= depth {
-            let (mut a, mut b) = (left, right);
-            while b - a > 1e-9 {
-                let m = 0.5 * (a + b);
-                if profile.z(m) >= depth {
-                    a = m;
-                } else {
-                    b = m;
-                }
-            }
-            return Some(0.5 * (a + b));
+            return Some(bisect(left, right, 1e-9, |m| profile.z(m) >= depth));
         }
         right = left;
     }

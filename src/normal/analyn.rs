@@ -44,45 +44,30 @@
 //! `prepare` and `solve` use fixed arrays of [`MAX_STRIPS`]: no allocation, no panic, no NaN for
 //! any finite geometry and any δ (δ ≤ 0 or NaN: no contact).
 
-use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::geometry::strips::{PerStrip, StripGeometry};
 use crate::normal::shape::HertzShapeTable;
 use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
 
 /// ANALYN (A1, physics.md §5.8). See the module documentation.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Analyn {
     /// Strips prepared (≤ [`MAX_STRIPS`]).
     n: usize,
     /// Strip can be in contact (A_i finite and positive).
-    active: [bool; MAX_STRIPS],
+    active: PerStrip<bool>,
     /// Floored lateral curvature B_i [1/m].
-    curv_b: [f64; MAX_STRIPS],
+    curv_b: PerStrip<f64>,
     /// Longitudinal curvature A_i [1/m].
-    curv_a: [f64; MAX_STRIPS],
+    curv_a: PerStrip<f64>,
     /// Gap f_i of the strip's locus [m].
-    gap: [f64; MAX_STRIPS],
+    gap: PerStrip<f64>,
     /// 1 + α_i = 1/ε_x [-].
-    one_plus_alpha: [f64; MAX_STRIPS],
+    one_plus_alpha: PerStrip<f64>,
     /// 1 + β_i = 1/ε_y [-].
-    one_plus_beta: [f64; MAX_STRIPS],
+    one_plus_beta: PerStrip<f64>,
     /// √(A_i + B_i) P_i: p_max = E* √δ_loc · this [1/√m].
-    peak_coeff: [f64; MAX_STRIPS],
-}
-
-impl Default for Analyn {
-    fn default() -> Self {
-        Self {
-            n: 0,
-            active: [false; MAX_STRIPS],
-            curv_b: [0.0; MAX_STRIPS],
-            curv_a: [0.0; MAX_STRIPS],
-            gap: [0.0; MAX_STRIPS],
-            one_plus_alpha: [0.0; MAX_STRIPS],
-            one_plus_beta: [0.0; MAX_STRIPS],
-            peak_coeff: [0.0; MAX_STRIPS],
-        }
-    }
+    peak_coeff: PerStrip<f64>,
 }
 
 /// Local approach δ_loc = δ − (1 + β) f [m] (A1).
@@ -168,6 +153,7 @@ impl StripModel for Analyn {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::strips::MAX_STRIPS;
     use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
     use std::sync::OnceLock;

@@ -28,6 +28,7 @@
 
 use crate::error::{require_non_negative, require_positive, InputError};
 use crate::numeric::elliptic::{complete_elliptic_from_complementary, CompleteElliptic};
+use crate::numeric::roots::Illinois;
 use std::f64::consts::PI;
 
 /// Contact modulus E* = E/(2(1 − ν²)) [Pa] of two bodies with the same Young's modulus `e` [Pa] and
@@ -166,34 +167,18 @@ pub fn solve_axis_ratio(curvature_ratio: f64) -> Result<AxisRatio, InputError> {
             integrals: ell_best,
         });
     }
-    // Illinois iteration.
-    let mut side = 0_i8;
+    // Illinois iteration on −h, which increases with t.
+    let mut bracket = Illinois::new((t_lo, -h_lo), (t_hi, -h_hi));
     let mut t = t_lo;
     for _ in 0..MAX_H1_ITERATIONS {
-        t = (t_lo * h_hi - t_hi * h_lo) / (h_hi - h_lo);
-        if !(t > t_lo && t < t_hi) {
-            t = 0.5 * (t_lo + t_hi);
-        }
+        t = bracket.inside_or_midpoint(bracket.secant());
         let (ht, ell) = h(t);
         ell_best = ell;
         if ht == 0.0 {
             break;
         }
-        if ht > 0.0 {
-            t_lo = t;
-            h_lo = ht;
-            if side == 1 {
-                h_hi *= 0.5;
-            }
-            side = 1;
-        } else {
-            t_hi = t;
-            h_hi = ht;
-            if side == -1 {
-                h_lo *= 0.5;
-            }
-            side = -1;
-        }
+        bracket.update(t, -ht);
+        let (t_lo, t_hi) = (bracket.neg.0, bracket.pos.0);
         if (t_hi - t_lo) <= 4.0 * f64::EPSILON * t_lo.abs().max(1e-3) {
             break;
         }

@@ -111,7 +111,7 @@
 
 use std::f64::consts::{E, FRAC_PI_2, PI};
 
-use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::geometry::strips::{PerStrip, StripGeometry};
 use crate::normal::shape::HertzShapeTable;
 use crate::normal::strips::{first_contact_points, StripSolution, MAX_CONTACT_POINTS};
 use crate::normal::{NormalParams, StripModel};
@@ -466,7 +466,7 @@ pub struct KikPiotrowski {
     /// Virtual-penetration factor ε ∈ (0, 1] [-].
     epsilon: f64,
     /// Scratch: strip half-lengths x_l,i of the last solve (after KP8) [m].
-    half_length: [f64; MAX_STRIPS],
+    half_length: PerStrip<f64>,
     /// D3's kernel remainder, tabulated at construction.
     kernel: RemainderTable,
     /// The first-contact points of the geometry of the last `prepare` ([`first_contact_points`]):
@@ -498,7 +498,7 @@ impl KikPiotrowski {
         };
         Self {
             epsilon,
-            half_length: [0.0; MAX_STRIPS],
+            half_length: PerStrip::default(),
             kernel: RemainderTable::new(),
             points: [(0.0, 0.0, 0.0); MAX_CONTACT_POINTS],
             n_points: 0,
@@ -617,6 +617,7 @@ impl StripModel for KikPiotrowski {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::strips::MAX_STRIPS;
     use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
     use std::sync::OnceLock;

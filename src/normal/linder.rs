@@ -86,7 +86,7 @@
 
 use std::f64::consts::PI;
 
-use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::geometry::strips::{PerStrip, StripGeometry};
 use crate::normal::shape::HertzShapeTable;
 use crate::normal::strips::{first_contact_points, StripSolution, MAX_CONTACT_POINTS};
 use crate::normal::{NormalParams, StripModel};
@@ -153,25 +153,15 @@ fn local_peak(semi_x: f64, semi_y: f64, curv_a: f64, e_star: f64) -> f64 {
 
 /// Linder's model: strip state is recomputed from the geometry on every solve (no δ-independent
 /// work is worth caching), so [`StripModel::prepare`] does nothing.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Linder {
     /// Scratch: penetration margin εδ − f_i per strip of the last solve [m].
-    margin: [f64; MAX_STRIPS],
+    margin: PerStrip<f64>,
     /// The virtual ellipse's centre and lateral semi-axis at the margin level `level` [m],
     /// from the last `prepare` (see [`StripModel::prepare`] for Linder).
     reference: Option<(f64, f64, f64)>,
     /// The gap's first-contact point (weighted over its minima) and its gap, from `prepare` [m].
     first_contact: (f64, f64),
-}
-
-impl Default for Linder {
-    fn default() -> Self {
-        Self {
-            margin: [0.0; MAX_STRIPS],
-            reference: None,
-            first_contact: (0.0, 0.0),
-        }
-    }
 }
 
 /// One virtual ellipse fitted to a run of strips in contact.
@@ -407,6 +397,7 @@ impl StripModel for Linder {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::strips::MAX_STRIPS;
     use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
     use std::sync::OnceLock;

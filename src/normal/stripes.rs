@@ -91,7 +91,7 @@
 //! `prepare` and `solve` use fixed arrays of [`MAX_STRIPS`] inside the structs: no allocation, no
 //! panic, and no NaN for any finite geometry and any δ (δ ≤ 0 or NaN: no contact).
 
-use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::geometry::strips::{PerStrip, StripGeometry};
 use crate::normal::shape::{HertzShape, HertzShapeTable};
 use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
@@ -248,39 +248,24 @@ fn integrate_corrected_gap(
 
 /// Per-strip data after the curvature corrections, common to both approaches: the strip touches
 /// where f*_i < ε_v,i δ, with x_l,i = √((ε_v,i δ − f*_i)/A*_i) and p0_i = E* κ_i x_l,i.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 struct CorrectedStrips {
     /// Strips prepared (≤ [`MAX_STRIPS`]).
     n: usize,
     /// Strip can be in contact (A_i finite and positive).
-    active: [bool; MAX_STRIPS],
+    active: PerStrip<bool>,
     /// Lateral curvature the model uses: smoothed and floored (A3) or shifted (A4) [1/m].
-    curv_b: [f64; MAX_STRIPS],
+    curv_b: PerStrip<f64>,
     /// Virtual-penetration factor ε_v,i: ε_i (A3), ε̃_i (A4) [-].
-    penetration_factor: [f64; MAX_STRIPS],
+    penetration_factor: PerStrip<f64>,
     /// Longitudinal curvature in S4: A_i (A3), A*_i (A4) [1/m].
-    curv_a_corr: [f64; MAX_STRIPS],
+    curv_a_corr: PerStrip<f64>,
     /// Corrected lateral curvature B*_i [1/m].
-    curv_b_corr: [f64; MAX_STRIPS],
+    curv_b_corr: PerStrip<f64>,
     /// Corrected gap f*_i at the strip centre (S3) [m].
-    gap_corr: [f64; MAX_STRIPS],
+    gap_corr: PerStrip<f64>,
     /// κ_i = P √(A (A + B)/ε_x) of the original curvatures (S5) [1/m].
-    peak_per_half_length: [f64; MAX_STRIPS],
-}
-
-impl Default for CorrectedStrips {
-    fn default() -> Self {
-        Self {
-            n: 0,
-            active: [false; MAX_STRIPS],
-            curv_b: [0.0; MAX_STRIPS],
-            penetration_factor: [0.0; MAX_STRIPS],
-            curv_a_corr: [0.0; MAX_STRIPS],
-            curv_b_corr: [0.0; MAX_STRIPS],
-            gap_corr: [0.0; MAX_STRIPS],
-            peak_per_half_length: [0.0; MAX_STRIPS],
-        }
-    }
+    peak_per_half_length: PerStrip<f64>,
 }
 
 impl CorrectedStrips {
@@ -321,20 +306,11 @@ impl CorrectedStrips {
 
 /// STRIPES Approach 3: local B corrected by the Hertz split, smoothed and floored (S0–S6,
 /// physics.md §5.6). See the module documentation.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct StripesB {
     strips: CorrectedStrips,
     /// Raw B with non-finite values replaced by B_min (input of the S0 filter) [1/m].
-    curv_b_raw: [f64; MAX_STRIPS],
-}
-
-impl Default for StripesB {
-    fn default() -> Self {
-        Self {
-            strips: CorrectedStrips::default(),
-            curv_b_raw: [0.0; MAX_STRIPS],
-        }
-    }
+    curv_b_raw: PerStrip<f64>,
 }
 
 impl StripesB {
@@ -486,6 +462,7 @@ impl StripModel for StripesAB {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::strips::MAX_STRIPS;
     use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
     use std::sync::OnceLock;

@@ -7,34 +7,22 @@
 //! [`first_contact_points`] finds where the gap has its local minima. All buffers are fixed-size
 //! arrays: a solve allocates nothing.
 
-use crate::geometry::strips::{StripGeometry, MAX_STRIPS};
+use crate::geometry::strips::{PerStrip, StripGeometry};
 
 /// Per-strip pressure of a normal model at one approach δ.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct StripSolution {
     pub n: usize,
     /// Half-length x_l,i of the strip's contact [m]; 0 when the strip is out of contact.
-    pub half_length: [f64; MAX_STRIPS],
+    pub half_length: PerStrip<f64>,
     /// Peak pressure p0_i of the strip's semi-ellipse [Pa]; 0 out of contact.
-    pub pmax: [f64; MAX_STRIPS],
+    pub pmax: PerStrip<f64>,
     /// Strip normal force (π/2) p0_i x_l,i Δs [N].
-    pub force: [f64; MAX_STRIPS],
+    pub force: PerStrip<f64>,
     /// The model's own local ellipse of strip i, semi-axes (along x, across) [m], for the
     /// tangential problem's strip-wise flexibilities (physics.md §4.8); (0, 0) where the model
     /// defines none (only Linder sets it: (a_j, b_L)).
-    pub local_axes: [(f64, f64); MAX_STRIPS],
-}
-
-impl Default for StripSolution {
-    fn default() -> Self {
-        Self {
-            n: 0,
-            half_length: [0.0; MAX_STRIPS],
-            pmax: [0.0; MAX_STRIPS],
-            force: [0.0; MAX_STRIPS],
-            local_axes: [(0.0, 0.0); MAX_STRIPS],
-        }
-    }
+    pub local_axes: PerStrip<(f64, f64)>,
 }
 
 impl StripSolution {

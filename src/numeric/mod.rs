@@ -2,4 +2,5 @@
 
 pub mod elliptic;
 pub mod interp;
+pub mod roots;
 pub mod spline;

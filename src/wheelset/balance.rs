@@ -9,6 +9,7 @@
 //! end nearer to the load is taken.
 
 use super::{SideResult, WheelsetError};
+use crate::numeric::roots::Illinois;
 
 /// Relative tolerance on the vertical force balance.
 pub const LOAD_TOLERANCE: f64 = 1e-9;
@@ -126,7 +127,7 @@ fn balance_in<E>(
             evaluated: true,
         });
     }
-    let mut kept = 0i8;
+    let mut bracket = Illinois::new((lo, f_lo), (hi, f_hi));
     let mut last = hi;
     let u_of = |dz: f64| {
         if hertzian {
@@ -144,11 +145,7 @@ fn balance_in<E>(
         }
     };
     for _ in 0..iterations {
-        let (u_lo, u_hi) = (u_of(lo), u_of(hi));
-        let mut mid = dz_of((u_lo * f_hi - u_hi * f_lo) / (f_hi - f_lo));
-        if !mid.is_finite() || mid <= lo.min(hi) || mid >= lo.max(hi) {
-            mid = 0.5 * (lo + hi);
-        }
+        let mid = bracket.inside_or_midpoint(dz_of(bracket.secant_in(u_of)));
         let f_mid = residual(mid)?;
         last = mid;
         if f_mid.abs() <= LOAD_TOLERANCE * load {
@@ -157,22 +154,9 @@ fn balance_in<E>(
                 evaluated: true,
             });
         }
-        if (f_mid > 0.0) == (f_hi > 0.0) {
-            hi = mid;
-            f_hi = f_mid;
-            if kept == -1 {
-                f_lo *= 0.5;
-            }
-            kept = -1;
-        } else {
-            lo = mid;
-            f_lo = f_mid;
-            if kept == 1 {
-                f_hi *= 0.5;
-            }
-            kept = 1;
-        }
+        bracket.update(mid, f_mid);
     }
+    let ((lo, f_lo), (hi, f_hi)) = (bracket.neg, bracket.pos);
     let best = if f_lo.abs() < f_hi.abs() { lo } else { hi };
     Ok(Balanced {
         lowering: best,

@@ -48,6 +48,7 @@ pub mod parse;
 pub mod s1002;
 pub mod uic60;
 
+use crate::numeric::roots::bisect;
 use std::path::Path;
 
 pub use crate::numeric::spline::{smoothing_length_for_noise, CubicSpline};
@@ -584,19 +585,8 @@ impl Profile {
                 return Some(b);
             }
             if (fb > 0.0) != (fa > 0.0) {
-                let (mut lo, mut hi, flo) = (a, b, fa);
-                for _ in 0..200 {
-                    let mid = 0.5 * (lo + hi);
-                    if mid == lo || mid == hi {
-                        break;
-                    }
-                    if (f(mid) > 0.0) == (flo > 0.0) {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                return Some(0.5 * (lo + hi));
+                let above_at_a = fa > 0.0;
+                return Some(bisect(a, b, 0.0, |mid| (f(mid) > 0.0) == above_at_a));
             }
             a = b;
             fa = fb;

@@ -183,23 +183,16 @@ pub fn sample_mm() -> (Vec<f64>, Vec<f64>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numeric::roots::bisect;
 
     fn f(s: f64) -> [f64; 3] {
         s1002_mm(s).unwrap()
     }
 
     /// Bisection for F(s) = level on [a, b] (F(a) − level and F(b) − level of opposite sign).
-    fn solve(level: f64, mut a: f64, mut b: f64) -> f64 {
-        let fa = f(a)[0] - level;
-        for _ in 0..200 {
-            let m = 0.5 * (a + b);
-            if (f(m)[0] - level > 0.0) == (fa > 0.0) {
-                a = m;
-            } else {
-                b = m;
-            }
-        }
-        0.5 * (a + b)
+    fn solve(level: f64, a: f64, b: f64) -> f64 {
+        let above_at_a = f(a)[0] - level > 0.0;
+        bisect(a, b, 0.0, |m| (f(m)[0] - level > 0.0) == above_at_a)
     }
 
     /// physics.md §8.1: F(0) = 0, F'(0) = −0.03359, F''(0) = 3.13e−3 1/mm (quoted to 4 and 3

@@ -34,6 +34,8 @@
 //! dimension); no fishing surfaces, web or foot; no inclination (cant the rail in the
 //! wheel–rail geometry, not here).
 
+use crate::numeric::roots::bisect;
+
 /// Crown radius [mm].
 pub const R_CROWN_MM: f64 = 300.0;
 /// Shoulder radius [mm].
@@ -92,18 +94,13 @@ impl HeadGeometry {
     pub fn nominal() -> Self {
         let target = 0.5 * HEAD_WIDTH_MM;
         let alpha1 = (CROWN_END_Y_MM / R_CROWN_MM).asin();
-        let (mut lo, mut hi) = (alpha1, FLANK_SLOPE.atan());
         // The half-width at the gauge depth grows with α₂ (the gauge corner moves outwards).
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            let hw = Self::with_alpha2(mid).half_width_at_mm(GAUGE_DEPTH_MM);
-            if hw.is_some_and(|w| w < target) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        Self::with_alpha2(0.5 * (lo + hi))
+        let alpha2 = bisect(alpha1, FLANK_SLOPE.atan(), 0.0, |alpha2| {
+            Self::with_alpha2(alpha2)
+                .half_width_at_mm(GAUGE_DEPTH_MM)
+                .is_some_and(|w| w < target)
+        });
+        Self::with_alpha2(alpha2)
     }
 
     /// Junctions (|y|, z) [mm] of the right half: crown|R80, R80|R13, R13|flank, flank end.
