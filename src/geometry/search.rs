@@ -1210,21 +1210,36 @@ impl WheelOnRail {
         p: &Prepared,
     ) -> (f64, GapSample) {
         if lo.slope < 0.0 && hi.slope > 0.0 {
-            let mut bracket = Illinois::new((a, lo.slope), (b, hi.slope));
-            let mut w = a;
-            for _ in 0..REFINE_STEPS {
-                let next = bracket.secant();
-                let moved = (next - w).abs();
-                w = next;
-                let s = self.sample(w, p);
-                // 1e−10 m: the secant's error is then far smaller still (superlinear).
-                if s.slope == 0.0 || moved < 1e-10 || bracket.width() < 1e-10 {
-                    return self.accept_refined(w, s, (bracket.neg.0, bracket.pos.0), mid, p);
-                }
-                bracket.update(w, s.slope);
+            let bracket = Illinois::new((a, lo.slope), (b, hi.slope));
+            if let Ok((w, s, bracket)) = self.slope_root(bracket, 1.0, p) {
+                return self.accept_refined(w, s, (bracket.neg.0, bracket.pos.0), mid, p);
             }
         }
         self.golden_section(a, b, p)
+    }
+
+    /// The root of the gap's slope times `sign` (±1) inside `bracket` by Illinois: the lateral,
+    /// its sample and the last bracket once the step or the bracket is below 1e−10 m (the
+    /// secant's error is then far smaller still: superlinear), or the last iterate if
+    /// [`REFINE_STEPS`] do not get there.
+    fn slope_root(
+        &self,
+        mut bracket: Illinois,
+        sign: f64,
+        p: &Prepared,
+    ) -> Result<(f64, GapSample, Illinois), f64> {
+        let mut w = bracket.neg.0;
+        for _ in 0..REFINE_STEPS {
+            let next = bracket.secant();
+            let moved = (next - w).abs();
+            w = next;
+            let s = self.sample(w, p);
+            if s.slope == 0.0 || moved < 1e-10 || bracket.width() < 1e-10 {
+                return Ok((w, s, bracket));
+            }
+            bracket.update(w, sign * s.slope);
+        }
+        Err(w)
     }
 
     /// The slope root `w` (sample `s`) inside [a, b] if it lies below the sampled minimum `mid`,
@@ -1292,19 +1307,11 @@ impl WheelOnRail {
         let (sa, sb) = (self.sample(a, p), self.sample(b, p));
         if sa.slope > 0.0 && sb.slope < 0.0 {
             // The slope decreases through the ridge: the bracket holds its negative.
-            let mut bracket = Illinois::new((a, -sa.slope), (b, -sb.slope));
-            let mut w = a;
-            for _ in 0..REFINE_STEPS {
-                let next = bracket.secant();
-                let moved = (next - w).abs();
-                w = next;
-                let s = self.sample(w, p);
-                if s.slope == 0.0 || moved < 1e-10 || bracket.width() < 1e-10 {
-                    return (w, s);
-                }
-                bracket.update(w, -s.slope);
-            }
-            return (w, self.sample(w, p));
+            let bracket = Illinois::new((a, -sa.slope), (b, -sb.slope));
+            return match self.slope_root(bracket, -1.0, p) {
+                Ok((w, s, _)) => (w, s),
+                Err(w) => (w, self.sample(w, p)),
+            };
         }
         let (w, s) = self.golden_section_by(a, b, p, |g| -g);
         (w, s)

@@ -156,7 +156,10 @@ mod tests {
     use crate::geometry::strips::MAX_STRIPS;
     use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
-    use std::sync::OnceLock;
+    use crate::normal::test_support::{
+        self, assert_continuous_sweep, awkward_geometries, awkward_geometry, no_nan, table,
+        AWKWARD_DELTAS, AWKWARD_HALF_WIDTH, SECOND_MINIMUM,
+    };
 
     /// Per-strip tolerance against exact Hertz, normalised by a² or p0: the table's 1e−7
     /// relative accuracy of ε_x and P (strips.rs), amplified at most a few times by
@@ -167,21 +170,12 @@ mod tests {
     /// Approach of the Hertz cases [m].
     const DELTA: f64 = 50e-6;
 
-    fn table() -> &'static HertzShapeTable {
-        static TABLE: OnceLock<HertzShapeTable> = OnceLock::new();
-        TABLE.get_or_init(HertzShapeTable::new)
-    }
-
     fn params() -> NormalParams {
         NormalParams::default()
     }
 
     fn run(geom: &StripGeometry, params: &NormalParams, delta: f64) -> (StripSolution, f64) {
-        let mut model = Analyn::default();
-        let mut out = StripSolution::default();
-        model.prepare(geom, params, table());
-        let n = model.solve(geom, params, table(), delta, &mut out);
-        (out, n)
+        test_support::run(&mut Analyn::default(), geom, params, delta)
     }
 
     fn hertz(ratio: f64) -> (f64, HertzPatch) {
@@ -190,15 +184,6 @@ mod tests {
             a,
             hertz_from_approach(a, CURV_B, DELTA, params().e_star).unwrap(),
         )
-    }
-
-    fn no_nan(sol: &StripSolution, n_total: f64) {
-        assert!(n_total.is_finite() && n_total >= 0.0, "N = {n_total}");
-        for i in 0..sol.n {
-            for v in [sol.half_length[i], sol.pmax[i], sol.force[i]] {
-                assert!(v.is_finite() && v >= 0.0, "strip {i}: {v}");
-            }
-        }
     }
 
     #[test]
@@ -292,47 +277,10 @@ mod tests {
 
     #[test]
     fn awkward_inputs_give_no_nan_and_no_panic() {
-        let w = 0.01;
-        let two_min = move |s: f64| {
-            let (k, s2) = (2e4, 0.6 * w);
-            (
-                k * s * s * (s - s2).powi(2),
-                1.0,
-                k * (6.0 * s * s - 6.0 * s * s2 + s2 * s2),
-            )
-        };
-        let mut odd = StripGeometry::quadratic(1.0, 2.0, -w, w, 30);
-        odd.curv_b[3] = f64::NAN;
-        odd.curv_b[4] = f64::NEG_INFINITY;
-        odd.f[5] = f64::NAN;
-        odd.curv_a[6] = f64::INFINITY;
-        let cases = [
-            (
-                "conformal",
-                StripGeometry::from_fn(-w, w, 40, |_| (0.0, 1.0, 0.0)),
-            ),
-            (
-                "concave",
-                StripGeometry::from_fn(-w, w, 40, |s| (-s * s, 1.0, -1.0)),
-            ),
-            (
-                "two minima",
-                StripGeometry::from_fn(-0.5 * w, 1.2 * w, 120, two_min),
-            ),
-            (
-                "A ≤ 0",
-                StripGeometry::from_fn(-w, w, 40, |s| (s * s, s * 1e3, 1.0)),
-            ),
-            ("non-finite", odd),
-            (
-                "extreme ratios",
-                StripGeometry::from_fn(-w, w, 40, |s| (s * s, 1e-9, 1e9)),
-            ),
-            ("one strip", StripGeometry::quadratic(1.0, 2.0, -w, w, 1)),
-            ("no strip", StripGeometry::default()),
-        ];
+        let w = AWKWARD_HALF_WIDTH;
+        let cases = awkward_geometries();
         for (name, geom) in &cases {
-            for delta in [-1e-5, 0.0, 1e-12, 5e-5, 1e-2, 1e3, f64::NAN, f64::INFINITY] {
+            for delta in AWKWARD_DELTAS {
                 for p in [
                     params(),
                     NormalParams {
@@ -349,9 +297,9 @@ mod tests {
             }
         }
         // Two minima: ANALYN's strips are independent, so both regions carry load.
-        let (_, geom) = &cases[2];
+        let geom = &awkward_geometry("two minima");
         let (sol, _) = run(geom, &params(), 1e-6);
-        let s2 = 0.6 * w;
+        let s2 = SECOND_MINIMUM;
         let near = |target: f64| {
             (0..geom.n).any(|i| (geom.s[i] - target).abs() < 0.1 * w && sol.half_length[i] > 0.0)
         };
@@ -366,61 +314,8 @@ mod tests {
         assert!(model.curv_b().iter().all(|&b| b == params().b_min));
     }
 
-    /// Largest step of `values` between neighbours.
-    fn max_jump(values: &[f64]) -> f64 {
-        values
-            .windows(2)
-            .map(|w| (w[1] - w[0]).abs())
-            .fold(0.0, f64::max)
-    }
-
     #[test]
     fn normal_force_is_continuous_while_b_crosses_zero() {
-        // B = B0(1 − s/s_t), f = B0 s²(1 − s/(3 s_t)), s_t from 3w to 0.4w: the zero of B moves
-        // into the patch. Continuity: the largest jump between neighbours shrinks ~10× with a
-        // 10× finer sweep (a discontinuity would keep it); N(δ) non-decreasing.
-        let w = 1.5 * hertz(1.0 / 1.5).1.b;
-        let geometry = |s_t: f64| {
-            StripGeometry::from_fn(-w, w, 80, |s| {
-                (
-                    CURV_B * s * s * (1.0 - s / (3.0 * s_t)),
-                    1.0,
-                    CURV_B * (1.0 - s / s_t),
-                )
-            })
-        };
-        let family = |steps: usize| -> Vec<f64> {
-            (0..=steps)
-                .map(|k| {
-                    run(
-                        &geometry(w * (3.0 - 2.6 * k as f64 / steps as f64)),
-                        &params(),
-                        DELTA,
-                    )
-                    .1
-                })
-                .collect()
-        };
-        let (coarse, fine) = (family(40), family(400));
-        let (j_coarse, j_fine) = (max_jump(&coarse), max_jump(&fine));
-        let geom = geometry(0.4 * w);
-        let in_delta = |steps: usize| -> Vec<f64> {
-            (0..=steps)
-                .map(|k| run(&geom, &params(), 4.0 * DELTA * k as f64 / steps as f64).1)
-                .collect()
-        };
-        let (d_coarse, d_fine) = (in_delta(40), in_delta(400));
-        let (k_coarse, k_fine) = (max_jump(&d_coarse), max_jump(&d_fine));
-        eprintln!(
-            "sweep: N {:.0}…{:.0} N, max jump {j_coarse:.1} → {j_fine:.2} N; \
-             N(δ) max jump {k_coarse:.1} → {k_fine:.2} N",
-            fine[0], fine[400]
-        );
-        assert!(fine.iter().all(|n| n.is_finite() && *n > 0.0));
-        assert!(j_fine < 0.2 * j_coarse);
-        assert!(d_fine.windows(2).all(|w| w[1] >= w[0]));
-        assert!(k_fine < 0.2 * k_coarse);
-        let (sol, _) = run(&geom, &params(), 4.0 * DELTA);
-        assert!((0..geom.n).any(|i| geom.curv_b[i] < 0.0 && sol.half_length[i] > 0.0));
+        assert_continuous_sweep(Analyn::default, 1.5 * hertz(1.0 / 1.5).1.b, DELTA);
     }
 }

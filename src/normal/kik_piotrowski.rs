@@ -620,32 +620,15 @@ mod tests {
     use crate::geometry::strips::MAX_STRIPS;
     use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
-    use std::sync::OnceLock;
+    use crate::normal::test_support::{self, no_nan};
 
     /// Lateral curvature of the Hertz cases [1/m] (flat-tread wheel on a 600 mm crown).
     const CURV_B: f64 = 1.5;
     /// Approach of the Hertz cases [m].
     const DELTA: f64 = 50e-6;
 
-    fn table() -> &'static HertzShapeTable {
-        static TABLE: OnceLock<HertzShapeTable> = OnceLock::new();
-        TABLE.get_or_init(HertzShapeTable::new)
-    }
-
-    fn run_with(
-        model: &mut KikPiotrowski,
-        geom: &StripGeometry,
-        params: &NormalParams,
-        delta: f64,
-    ) -> (StripSolution, f64) {
-        let mut out = StripSolution::default();
-        model.prepare(geom, params, table());
-        let n = model.solve(geom, params, table(), delta, &mut out);
-        (out, n)
-    }
-
     fn run(geom: &StripGeometry, delta: f64) -> (StripSolution, f64) {
-        run_with(
+        test_support::run(
             &mut KikPiotrowski::default(),
             geom,
             &NormalParams::default(),
@@ -662,15 +645,6 @@ mod tests {
     fn hertz_gap(curv_a: f64, curv_b: f64, delta: f64, n: usize) -> StripGeometry {
         let b_v = (KP_EPSILON * delta / curv_b).sqrt();
         StripGeometry::quadratic(curv_a, curv_b, -1.27 * b_v, 1.21 * b_v, n)
-    }
-
-    fn no_nan(sol: &StripSolution, n_total: f64) {
-        assert!(n_total.is_finite() && n_total >= 0.0, "N = {n_total}");
-        for i in 0..sol.n {
-            for v in [sol.half_length[i], sol.pmax[i], sol.force[i]] {
-                assert!(v.is_finite() && v >= 0.0, "strip {i}: {v}");
-            }
-        }
     }
 
     /// KP5's p0 at y0 from the strip containing y0: p0 = p0_j x_l(y0)/x_l,j (KP3) with
@@ -849,7 +823,7 @@ mod tests {
         let h = hertz(CURV_B, CURV_B, DELTA);
         let a = h.a;
         let geom = StripGeometry::quadratic(CURV_B, CURV_B, -1.13 * a, 1.07 * a, MAX_STRIPS);
-        let (sol, n) = run_with(&mut model, &geom, &NormalParams::default(), DELTA);
+        let (sol, n) = test_support::run(&mut model, &geom, &NormalParams::default(), DELTA);
         no_nan(&sol, n);
         let sum = PatchSummary::of(&geom, &sol);
         let p0 = peak_at_origin(&geom, &sol, eps, DELTA);
@@ -925,7 +899,7 @@ mod tests {
             let curv_a = ratio * CURV_B;
             let geom = hertz_gap(curv_a, CURV_B, DELTA, MAX_STRIPS);
             let (plain, _) = run(&geom, DELTA);
-            let (sol, n) = run_with(&mut KikPiotrowski::default(), &geom, &params, DELTA);
+            let (sol, n) = test_support::run(&mut KikPiotrowski::default(), &geom, &params, DELTA);
             no_nan(&sol, n);
             let a_v = (KP_EPSILON * DELTA / curv_a).sqrt();
             let b_v = (KP_EPSILON * DELTA / CURV_B).sqrt();
@@ -996,7 +970,8 @@ mod tests {
                 .map(|&m| {
                     let geom = StripGeometry::quadratic(curv_a, CURV_B, -1.2 * b_v, 1.2 * b_v, m);
                     let params = NormalParams::default();
-                    run_with(&mut KikPiotrowski::with_epsilon(eps), &geom, &params, DELTA).1
+                    test_support::run(&mut KikPiotrowski::with_epsilon(eps), &geom, &params, DELTA)
+                        .1
                 })
                 .collect();
             let h = hertz(curv_a, CURV_B, DELTA);
@@ -1068,7 +1043,8 @@ mod tests {
         for geom in &geometries {
             for params in [NormalParams::default(), corrected] {
                 for delta in [1e-9, 1e-7, 1e-5, 5e-5, 2e-4, 1e-2] {
-                    let (sol, n) = run_with(&mut KikPiotrowski::default(), geom, &params, delta);
+                    let (sol, n) =
+                        test_support::run(&mut KikPiotrowski::default(), geom, &params, delta);
                     no_nan(&sol, n);
                 }
             }

@@ -400,7 +400,7 @@ mod tests {
     use crate::geometry::strips::MAX_STRIPS;
     use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
-    use std::sync::OnceLock;
+    use crate::normal::test_support::{self, no_nan};
 
     /// Lateral curvature of the Hertz cases [1/m] (flat-tread wheel on a 600 mm crown).
     const CURV_B: f64 = 1.5;
@@ -409,18 +409,13 @@ mod tests {
     /// Strips of the Hertz cases (MAX_STRIPS).
     const STRIPS: usize = MAX_STRIPS;
 
-    fn table() -> &'static HertzShapeTable {
-        static TABLE: OnceLock<HertzShapeTable> = OnceLock::new();
-        TABLE.get_or_init(HertzShapeTable::new)
-    }
-
     fn run(geom: &StripGeometry, delta: f64) -> (StripSolution, f64) {
-        let params = NormalParams::default();
-        let mut model = Linder::default();
-        let mut out = StripSolution::default();
-        model.prepare(geom, &params, table());
-        let n = model.solve(geom, &params, table(), delta, &mut out);
-        (out, n)
+        test_support::run(
+            &mut Linder::default(),
+            geom,
+            &NormalParams::default(),
+            delta,
+        )
     }
 
     fn hertz(curv_a: f64, curv_b: f64, delta: f64) -> HertzPatch {
@@ -440,15 +435,6 @@ mod tests {
     fn hertz_gap(curv_a: f64, curv_b: f64, delta: f64) -> StripGeometry {
         let (_, b_v) = virtual_axes(curv_a, curv_b, delta);
         StripGeometry::quadratic(curv_a, curv_b, -1.13 * b_v, 1.07 * b_v, STRIPS)
-    }
-
-    fn no_nan(sol: &StripSolution, n_total: f64) {
-        assert!(n_total.is_finite() && n_total >= 0.0, "N = {n_total}");
-        for i in 0..sol.n {
-            for v in [sol.half_length[i], sol.pmax[i], sol.force[i]] {
-                assert!(v.is_finite() && v >= 0.0, "strip {i}: {v}");
-            }
-        }
     }
 
     /// δ for the load `target` by V2 (physics.md §5.2), to 1e−10.

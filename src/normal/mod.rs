@@ -13,6 +13,8 @@ pub mod linder;
 pub mod shape;
 pub mod stripes;
 pub mod strips;
+#[cfg(test)]
+pub(crate) mod test_support;
 
 use crate::geometry::strips::StripGeometry;
 use shape::HertzShapeTable;

@@ -465,7 +465,9 @@ mod tests {
     use crate::geometry::strips::MAX_STRIPS;
     use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
-    use std::sync::OnceLock;
+    use crate::normal::test_support::{
+        assert_continuous_sweep, awkward_geometries, no_nan, run, table, AWKWARD_DELTAS,
+    };
 
     /// Tolerance of per-strip comparisons with exact Hertz, normalised by a² or p0: the table's
     /// 1e−7 relative accuracy of ε_x and P (strips.rs), amplified at most a few times by
@@ -478,25 +480,8 @@ mod tests {
     /// Curvature ratios A/B of the brief's exactness check (physics.md §5.6).
     const RATIOS: [f64; 5] = [1.0, 1.0 / 3.0, 0.1, 3.0, 0.02];
 
-    fn table() -> &'static HertzShapeTable {
-        static TABLE: OnceLock<HertzShapeTable> = OnceLock::new();
-        TABLE.get_or_init(HertzShapeTable::new)
-    }
-
     fn params() -> NormalParams {
         NormalParams::default()
-    }
-
-    fn run(
-        model: &mut impl StripModel,
-        geom: &StripGeometry,
-        params: &NormalParams,
-        delta: f64,
-    ) -> (StripSolution, f64) {
-        let mut out = StripSolution::default();
-        model.prepare(geom, params, table());
-        let n = model.solve(geom, params, table(), delta, &mut out);
-        (out, n)
     }
 
     fn hertz(ratio: f64) -> (f64, HertzPatch) {
@@ -525,15 +510,6 @@ mod tests {
             err = err.max((sol.pmax[i] - p0 * q.sqrt()).abs() / p0);
         }
         err
-    }
-
-    fn no_nan(sol: &StripSolution, n_total: f64) {
-        assert!(n_total.is_finite() && n_total >= 0.0, "N = {n_total}");
-        for i in 0..sol.n {
-            for v in [sol.half_length[i], sol.pmax[i], sol.force[i]] {
-                assert!(v.is_finite() && v >= 0.0, "strip {i}: {v}");
-            }
-        }
     }
 
     #[test]
@@ -841,57 +817,6 @@ mod tests {
         }
     }
 
-    /// Awkward geometries: conformal, concave, two minima, zero/negative A, non-finite B,
-    /// one strip, no strip.
-    fn awkward_geometries() -> Vec<(&'static str, StripGeometry)> {
-        let w = 0.01;
-        let two_min = move |s: f64| {
-            // f = k s²(s − s2)²: minima at 0 and s2, concave hump between them.
-            let (k, s2) = (2e4, 0.6 * w);
-            let f = k * s * s * (s - s2).powi(2);
-            (f, 1.0, k * (6.0 * s * s - 6.0 * s * s2 + s2 * s2))
-        };
-        let mut nan_b = StripGeometry::quadratic(1.0, 2.0, -w, w, 30);
-        nan_b.curv_b[3] = f64::NAN;
-        nan_b.curv_b[4] = f64::INFINITY;
-        nan_b.curv_b[5] = f64::NEG_INFINITY;
-        vec![
-            (
-                "conformal",
-                StripGeometry::from_fn(-w, w, 40, |_| (0.0, 1.0, 0.0)),
-            ),
-            (
-                "concave",
-                StripGeometry::from_fn(-w, w, 40, |s| (-s * s, 1.0, -1.0)),
-            ),
-            (
-                "concave f ≥ 0",
-                StripGeometry::from_fn(-w, w, 40, |s| (0.01 * s.abs(), 1.0, -2.0)),
-            ),
-            (
-                "two minima",
-                StripGeometry::from_fn(-0.5 * w, 1.2 * w, 120, two_min),
-            ),
-            (
-                "A ≤ 0",
-                StripGeometry::from_fn(-w, w, 40, |s| (s * s, s * 1e3, 1.0)),
-            ),
-            ("non-finite B", nan_b),
-            (
-                "extreme ratios",
-                StripGeometry::from_fn(-w, w, 40, |s| (s * s, 1e-9, 1e9)),
-            ),
-            ("one strip", StripGeometry::quadratic(1.0, 2.0, -w, w, 1)),
-            (
-                "one strip off origin",
-                StripGeometry::quadratic(1.0, -2.0, 0.2 * w, w, 1),
-            ),
-            ("no strip", StripGeometry::default()),
-        ]
-    }
-
-    const AWKWARD_DELTAS: [f64; 8] = [-1e-5, 0.0, 1e-12, 5e-5, 1e-2, 1e3, f64::NAN, f64::INFINITY];
-
     fn assert_robust(model: &mut impl StripModel) {
         for (name, geom) in awkward_geometries() {
             for b_smoothing in [0.0, 0.2, 3.0] {
@@ -936,76 +861,11 @@ mod tests {
         assert_robust(&mut StripesAB::default());
     }
 
-    /// Largest step of `values` between neighbours.
-    fn max_jump(values: &[f64]) -> f64 {
-        values
-            .windows(2)
-            .map(|w| (w[1] - w[0]).abs())
-            .fold(0.0, f64::max)
-    }
-
-    /// A family where B crosses zero inside the strip set: B = B0(1 − s/s_t), f consistent
-    /// (f = B0 s²(1 − s/(3 s_t)) > 0 for s < 3 s_t), A = 1 1/m. s_t from 3w down to 0.4w moves the
-    /// zero of B from outside the set to well inside it.
-    fn sweep_geometry(s_t: f64, w: f64) -> StripGeometry {
-        StripGeometry::from_fn(-w, w, 80, |s| {
-            (
-                CURV_B * s * s * (1.0 - s / (3.0 * s_t)),
-                1.0,
-                CURV_B * (1.0 - s / s_t),
-            )
-        })
-    }
-
-    /// N along a lateral sweep (B crossing zero) and along δ: continuous, i.e. the largest jump
-    /// between neighbours shrinks ~10× when the sweep step is refined 10× (a discontinuity would
-    /// keep it), and N(δ) is non-decreasing.
-    fn assert_continuous_sweep<M: StripModel>(make: impl Fn() -> M) {
-        let w = 1.5 * hertz(1.0 / 1.5).1.b;
-        // Deep enough that STRIPES-AB's shifted (stiffer) B still lets B < 0 strips touch.
-        let sweep_delta = 3.0 * DELTA;
-        let family = |steps: usize| -> Vec<f64> {
-            (0..=steps)
-                .map(|k| {
-                    let s_t = w * (3.0 - 2.6 * k as f64 / steps as f64);
-                    run(&mut make(), &sweep_geometry(s_t, w), &params(), sweep_delta).1
-                })
-                .collect()
-        };
-        let (coarse, fine) = (family(40), family(400));
-        let (j_coarse, j_fine) = (max_jump(&coarse), max_jump(&fine));
-        let geom = sweep_geometry(0.5 * w, w);
-        let in_delta = |steps: usize| -> Vec<f64> {
-            let mut model = make();
-            let mut out = StripSolution::default();
-            model.prepare(&geom, &params(), table());
-            (0..=steps)
-                .map(|k| {
-                    let delta = 4.0 * DELTA * k as f64 / steps as f64;
-                    model.solve(&geom, &params(), table(), delta, &mut out)
-                })
-                .collect()
-        };
-        let (d_coarse, d_fine) = (in_delta(40), in_delta(400));
-        let (k_coarse, k_fine) = (max_jump(&d_coarse), max_jump(&d_fine));
-        eprintln!(
-            "sweep: N {:.0}…{:.0} N, max jump {j_coarse:.1} → {j_fine:.2} N; \
-             N(δ) max jump {k_coarse:.1} → {k_fine:.2} N",
-            fine[0], fine[400]
-        );
-        assert!(fine.iter().all(|n| n.is_finite() && *n > 0.0));
-        assert!(j_fine < 0.2 * j_coarse);
-        assert!(d_fine.windows(2).all(|w| w[1] >= w[0]));
-        assert!(k_fine < 0.2 * k_coarse);
-        // The sweep is meaningful: at its end, strips with raw B < 0 are in contact.
-        let last = sweep_geometry(0.4 * w, w);
-        let (sol, _) = run(&mut make(), &last, &params(), sweep_delta);
-        assert!((0..last.n).any(|i| last.curv_b[i] < 0.0 && sol.half_length[i] > 0.0));
-    }
-
     #[test]
     fn normal_force_is_continuous_while_b_crosses_zero() {
-        assert_continuous_sweep(StripesB::default);
-        assert_continuous_sweep(StripesAB::default);
+        // Deep enough that STRIPES-AB's shifted (stiffer) B still lets B < 0 strips touch.
+        let w = 1.5 * hertz(1.0 / 1.5).1.b;
+        assert_continuous_sweep(StripesB::default, w, 3.0 * DELTA);
+        assert_continuous_sweep(StripesAB::default, w, 3.0 * DELTA);
     }
 }

@@ -34,10 +34,22 @@ pub struct Balanced {
     pub evaluated: bool,
 }
 
+/// How the force grows with the approach, which sets the variable of the regula falsi.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ForceLaw {
+    /// Any increasing force: regula falsi in the lowering dz.
+    General,
+    /// Close to a Hertz patch's F ∝ δ^{3/2}: regula falsi in u = δ^{3/2}.
+    Hertzian,
+}
+
 /// Finds the lowering dz at which `residual(dz)` = F(dz) − load [N] vanishes (to
 /// [`LOAD_TOLERANCE`] × load), given the touching lowering `touch` (where the residual is
 /// −load), a first approach estimate `first_approach` > 0 [m] and at most `iterations` Illinois
-/// steps. Errors of `residual` are passed on.
+/// steps. Errors of `residual` are passed on. With [`ForceLaw::Hertzian`] (the multi-Hertzian
+/// wheel) the regula falsi runs in u = δ^{3/2} (δ = dz − touch), where a Hertz patch's force is
+/// linear, so one step solves a single patch and a few steps several (the strip models' forces
+/// are further from that law: with them it needs more steps than in dz, measured).
 ///
 /// Bracketing starts at the first estimate, which is accepted at once when it balances the load
 /// (a warm start from the previous step). Otherwise the next trial comes from the Hertzian law
@@ -49,32 +61,7 @@ pub fn balance<E>(
     first_approach: f64,
     load: f64,
     iterations: usize,
-    residual: impl FnMut(f64) -> Result<f64, E>,
-) -> Result<Balanced, E> {
-    balance_in(touch, first_approach, load, iterations, false, residual)
-}
-
-/// [`balance`] for a force that grows like a Hertz patch's, F ∝ δ^{3/2} (the multi-Hertzian
-/// wheel): the regula falsi runs in u = δ^{3/2} (δ = dz − touch), where such a force is linear,
-/// so one step solves a single patch and a few steps several (the strip models' forces are
-/// further from that law: with them it needs more steps than in dz, measured).
-pub fn balance_hertzian<E>(
-    touch: f64,
-    first_approach: f64,
-    load: f64,
-    iterations: usize,
-    residual: impl FnMut(f64) -> Result<f64, E>,
-) -> Result<Balanced, E> {
-    balance_in(touch, first_approach, load, iterations, true, residual)
-}
-
-/// [`balance`] with the regula falsi in dz, or in u = δ^{3/2} if `hertzian`.
-fn balance_in<E>(
-    touch: f64,
-    first_approach: f64,
-    load: f64,
-    iterations: usize,
-    hertzian: bool,
+    law: ForceLaw,
     mut residual: impl FnMut(f64) -> Result<f64, E>,
 ) -> Result<Balanced, E> {
     let (mut lo, mut f_lo) = (touch, -load);
@@ -129,6 +116,7 @@ fn balance_in<E>(
     }
     let mut bracket = Illinois::new((lo, f_lo), (hi, f_hi));
     let mut last = hi;
+    let hertzian = law == ForceLaw::Hertzian;
     let u_of = |dz: f64| {
         if hertzian {
             let d = (dz - touch).max(0.0);
@@ -357,8 +345,9 @@ mod tests {
         let (k, touch, load): (f64, f64, f64) = (1e10, -2e-4, 8e4);
         let exact = touch + (load / k).powf(2.0 / 3.0);
         let mut evaluations = [0usize; 2];
-        for (hertzian, calls) in [false, true].into_iter().zip(&mut evaluations) {
-            let b = balance_in(touch, 1e-5, load, 60, hertzian, |dz| {
+        let laws = [ForceLaw::General, ForceLaw::Hertzian];
+        for (law, calls) in laws.into_iter().zip(&mut evaluations) {
+            let b = balance(touch, 1e-5, load, 60, law, |dz| {
                 *calls += 1;
                 Ok::<_, ()>(k * (dz - touch).max(0.0).powf(1.5) - load)
             })
@@ -375,7 +364,7 @@ mod tests {
         // F jumps from 0.9 load to 1.2 load at dz = 1e−4: no exact root; the end with the
         // smaller residual (0.1 load below the jump) is returned.
         let load = 1e4;
-        let b = balance(0.0, 1e-5, load, 60, |dz| {
+        let b = balance(0.0, 1e-5, load, 60, ForceLaw::General, |dz| {
             Ok::<_, ()>(
                 if dz < 1e-4 {
                     0.9 * load * dz / 1e-4
@@ -391,7 +380,9 @@ mod tests {
     #[test]
     fn residual_errors_are_passed_on() {
         assert_eq!(
-            balance(0.0, 1e-5, 1.0, 10, |_| Err::<f64, _>("bad")),
+            balance(0.0, 1e-5, 1.0, 10, ForceLaw::General, |_| Err::<f64, _>(
+                "bad"
+            )),
             Err("bad")
         );
     }

@@ -12,7 +12,7 @@ use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::groups::{group_bounds, groups_at};
 use crate::geometry::search::{ContactPoint, WheelOnRail};
 use crate::tangential::fastsim::EllipticContact;
-use crate::wheelset::balance::balance_hertzian;
+use crate::wheelset::balance::{balance, ForceLaw};
 
 /// Fraction of a patch group's depth at which its reference point is taken (see
 /// [`evaluate_side`]): the force centroid of the interpenetration above this fraction of its
@@ -288,9 +288,18 @@ pub(super) fn hertz_side(
     });
     let level = merge_level(touch, q, ctx.e_star, ctx.settings.setup.wheel_radius);
     creep_passes(q, start_creep, |_, target| {
-        let balanced = balance_hertzian(touch, first_approach, target, LOAD_ITERATIONS, |dz| {
-            Ok::<_, InputError>(evaluate_side(side, ctx, input, dz, level, out, false)? - target)
-        })?;
+        let balanced = balance(
+            touch,
+            first_approach,
+            target,
+            LOAD_ITERATIONS,
+            ForceLaw::Hertzian,
+            |dz| {
+                Ok::<_, InputError>(
+                    evaluate_side(side, ctx, input, dz, level, out, false)? - target,
+                )
+            },
+        )?;
         first_approach = balanced.lowering - touch;
         if !tangential {
             if !balanced.evaluated {

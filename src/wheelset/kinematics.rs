@@ -11,7 +11,6 @@
 
 use nalgebra::Vector3;
 
-use super::strip_side::StripPatch;
 use super::{Creepages, WheelsetInput, V_MIN};
 use crate::geometry::search::ContactPoint;
 use crate::tangential::fastsim::Creepage;
@@ -97,19 +96,6 @@ pub(super) fn tangential_in_axes(
     Vector3::new(fx, fy * e_y.y, fy * e_y.z)
 }
 
-/// The point of strip `j` of `patch` on the wheelset for its creepages: (longitudinal,
-/// lateral, rolling radius) [m] (its contact angle enters through its sine and cosine). The
-/// longitudinal position is the patch reference point's `x_ref`, not the strip's own yaw lead:
-/// the tangential solvers measure x from the reference point and add the spin's φ_j·x along
-/// the strip themselves, so the strip's creepages must hold at x = 0 of that frame.
-pub(super) fn strip_point(patch: &StripPatch, j: usize, x_ref: f64) -> Vector3<f64> {
-    Vector3::new(
-        x_ref,
-        patch.points.lateral[j],
-        patch.points.rolling_radius[j],
-    )
-}
-
 /// The kinematics of a non-planar patch (docs/theory.md): the rigid-body motion the strips'
 /// creepages come from — the wheelset's own, or with prescribed creepages (which hold at the
 /// reference point) pure rolling at the nominal wheel radius — and its creepages at the patch's
@@ -154,8 +140,8 @@ impl NonPlanar {
         }
     }
 
-    /// The non-planar part of the creepages at strip point `point` ([`strip_point`]; lever
-    /// `lever` along e_y from the reference point; `angle_trig` its contact angle's (sin, cos)):
+    /// The non-planar part of the creepages at the strip's point on the wheelset `point`
+    /// ((longitudinal, lateral, rolling radius) [m]; lever `lever` along e_y from the reference point; `angle_trig` its contact angle's (sin, cos)):
     /// the strip's creepages in its own axes minus what a flat patch would give there,
     /// (ξ_ref − φ_ref·lever, η_ref, φ_ref).
     pub(super) fn increment(

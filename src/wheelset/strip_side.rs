@@ -25,7 +25,7 @@
 use nalgebra::Vector3;
 
 use super::balance::{creep_passes, creep_upward};
-use super::kinematics::{creepages_at, strip_point, tangential_in_axes, NonPlanar};
+use super::kinematics::{creepages_at, tangential_in_axes, NonPlanar};
 use super::{store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput};
 use crate::error::InputError;
 use crate::geometry::groups::{group_bounds, groups_at, MAX_GROUPS};
@@ -37,7 +37,7 @@ use crate::normal::{NormalModel, NormalParams, StripModel};
 use crate::tangential::fastsim::Creepage;
 use crate::tangential::patch::{strip_flexibilities, EquivalentEllipse, TangentialModel};
 use crate::tangential::strip_fastsim::TangentialStrip;
-use crate::wheelset::balance::balance;
+use crate::wheelset::balance::{balance, ForceLaw};
 
 /// One non-elliptic patch: its plane, strips, model state, solution and weight.
 pub struct StripPatch {
@@ -316,7 +316,7 @@ impl StripSide {
         table: &HertzShapeTable,
     ) -> f64 {
         let first = approach.max(1e-9);
-        let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, |dz| {
+        let Ok(balanced) = balance(touch, first, q, LOAD_ITERATIONS, ForceLaw::General, |dz| {
             Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q)
         });
         if !balanced.evaluated {
@@ -545,4 +545,17 @@ pub(super) fn solve_strips(
         None => pass(side, 0, None).map(|_| None),
         Some(q) => creep_passes(q, creep, |k, target| Ok(Some(pass(side, k, Some(target))?))),
     }
+}
+
+/// The point of strip `j` of `patch` on the wheelset for its creepages: (longitudinal,
+/// lateral, rolling radius) [m] (its contact angle enters through its sine and cosine). The
+/// longitudinal position is the patch reference point's `x_ref`, not the strip's own yaw lead:
+/// the tangential solvers measure x from the reference point and add the spin's φ_j·x along
+/// the strip themselves, so the strip's creepages must hold at x = 0 of that frame.
+fn strip_point(patch: &StripPatch, j: usize, x_ref: f64) -> Vector3<f64> {
+    Vector3::new(
+        x_ref,
+        patch.points.lateral[j],
+        patch.points.rolling_radius[j],
+    )
 }

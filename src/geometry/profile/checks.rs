@@ -342,6 +342,8 @@ fn check_defects(
             radius_mm: MM / kappa,
             smoothing_m: smoothing,
             suggestion_m: suggestion,
+            min_radius_mm: MIN_RADIUS_M * MM,
+            largest_tried_m: SMOOTHING_CANDIDATES_M[SMOOTHING_CANDIDATES_M.len() - 1],
         },
     ))
 }

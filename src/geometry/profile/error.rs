@@ -124,6 +124,10 @@ pub enum ErrorReason {
         radius_mm: f64,
         smoothing_m: f64,
         suggestion_m: Option<f64>,
+        /// Smallest radius a real surface has [mm].
+        min_radius_mm: f64,
+        /// Largest smoothing length tried [m].
+        largest_tried_m: f64,
     },
 }
 
@@ -300,14 +304,16 @@ impl fmt::Display for ErrorReason {
                 radius_mm,
                 smoothing_m,
                 suggestion_m,
+                min_radius_mm,
+                largest_tried_m,
             } => {
                 write!(
                     f,
                     "a step or spike at y = {y_mm:.3} mm, z = {z_mm:.3} mm: the point lies \
                      {offset_mm:.3} mm off the curve through its neighbours, and the profile \
                      spline (profileSmoothing = {smoothing_m} m) bends there with a radius of \
-                     {radius_mm:.3} mm, below the {} mm of any real wheel or rail surface; ",
-                    super::checks::MIN_RADIUS_M * 1e3
+                     {radius_mm:.3} mm, below the {min_radius_mm} mm of any real wheel or rail \
+                     surface; "
                 )?;
                 match suggestion_m {
                     Some(s) => write!(
@@ -318,9 +324,8 @@ impl fmt::Display for ErrorReason {
                     ),
                     None => write!(
                         f,
-                        "no smoothing length up to {} m absorbs it: repair the data there",
-                        super::checks::SMOOTHING_CANDIDATES_M
-                            [super::checks::SMOOTHING_CANDIDATES_M.len() - 1]
+                        "no smoothing length up to {largest_tried_m} m absorbs it: repair the \
+                         data there"
                     ),
                 }
             }

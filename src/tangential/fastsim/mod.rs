@@ -1396,54 +1396,17 @@ mod tests {
         // Mz = +G c³ C23 η − … (physics.md §1).
         let c = oracle_contact();
         let mut f = Fastsim::new(FastsimSettings::default()).unwrap();
-        let r = f
-            .solve(
-                &c,
-                &Creepage {
-                    xi: 1e-5,
-                    eta: 0.0,
-                    phi: 0.0,
-                },
-                1.0,
-            )
-            .unwrap();
+        let mut solve =
+            |xi: f64, eta: f64, phi: f64| f.solve(&c, &Creepage { xi, eta, phi }, 1.0).unwrap();
+        let r = solve(1e-5, 0.0, 0.0);
         assert!(r.fx < 0.0 && r.fy.abs() < 1e-12 * r.fx.abs());
-        let r = f
-            .solve(
-                &c,
-                &Creepage {
-                    xi: 0.0,
-                    eta: 1e-5,
-                    phi: 0.0,
-                },
-                1.0,
-            )
-            .unwrap();
+        let r = solve(0.0, 1e-5, 0.0);
         assert!(r.fy < 0.0 && r.mz > 0.0);
-        let r = f
-            .solve(
-                &c,
-                &Creepage {
-                    xi: 0.0,
-                    eta: 0.0,
-                    phi: 1e-3,
-                },
-                1.0,
-            )
-            .unwrap();
+        let r = solve(0.0, 0.0, 1e-3);
         assert!(r.fy < 0.0 && r.mz < 0.0);
         // Material enters at x = +a: in pure creepage the traction grows from the leading edge
         // (zero at the largest x of a strip) towards the trailing edge.
-        f.solve(
-            &c,
-            &Creepage {
-                xi: 1e-5,
-                eta: 0.0,
-                phi: 0.0,
-            },
-            1.0,
-        )
-        .unwrap();
+        solve(1e-5, 0.0, 0.0);
         let centre_strip: Vec<ElementTraction> = f
             .tractions()
             .filter(|e| e.y > 0.0 && e.y < 0.11e-3)
