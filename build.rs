@@ -3,9 +3,9 @@
 //! * `$OUT_DIR/<Model>.xml`: the FMI 2.0 `modelDescription.xml`, and
 //! * `$OUT_DIR/<Model>_vars.rs`: the Rust table of value references, start values and ranges,
 //!
-//! with the same GUID in both: a hash of the XML body and the crate version (so a change of the
-//! variables or of the release changes the GUID, and hosts that cache unpacked FMUs by GUID see a
-//! new one).
+//! with the same GUID in both: a hash of the XML body, the capabilities that vary between models
+//! and the crate version (so a change of the variables, of a capability or of the release changes
+//! the GUID, and hosts that cache unpacked FMUs by GUID see a new one).
 //!
 //! Value references are the 0-based positions in the JSON list; each type (Real, Integer, Boolean,
 //! String) also gets a dense `slot` used as the index into the instance's value arrays.
@@ -22,6 +22,9 @@ struct ModelJson {
     model_identifier: String,
     description: String,
     default_experiment: DefaultExperiment,
+    /// Whether the model computes `fmi2GetDirectionalDerivative` (false if absent).
+    #[serde(default)]
+    provides_directional_derivative: bool,
     /// Variables, or groups `{"foreach": [KEY, [VALUES…]], "variables": [...]}` repeated once per
     /// value with `{KEY}` replaced in names and descriptions (nested groups allowed).
     variables: Vec<serde_json::Value>,
@@ -58,6 +61,7 @@ struct Model {
     model_identifier: String,
     description: String,
     default_experiment: DefaultExperiment,
+    provides_directional_derivative: bool,
     variables: Vec<VariableJson>,
 }
 
@@ -164,11 +168,17 @@ fn main() {
             model_identifier: json.model_identifier,
             description: json.description,
             default_experiment: json.default_experiment,
+            provides_directional_derivative: json.provides_directional_derivative,
             variables,
         };
         check_model(&model, &path);
         let body = xml_body(&model);
-        let guid = guid_of(&body, &version);
+        // The capabilities are part of what a host caches by GUID.
+        let capabilities = format!(
+            "providesDirectionalDerivative={}\n",
+            model.provides_directional_derivative
+        );
+        let guid = guid_of(&(capabilities + &body), &version);
         let xml = xml_document(&model, &guid, &version, &body);
         let id = &model.model_identifier;
         std::fs::write(Path::new(&out_dir).join(format!("{id}.xml")), &xml).expect("write xml");
@@ -382,8 +392,9 @@ canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"false\" \
 maxOutputDerivativeOrder=\"0\" canRunAsynchronuously=\"false\" \
 canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\" \
 canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\" \
-providesDirectionalDerivative=\"false\"/>\n{body}</fmiModelDescription>\n",
+providesDirectionalDerivative=\"{derivatives}\"/>\n{body}</fmiModelDescription>\n",
         name = xml_escape(&model.model_name),
+        derivatives = model.provides_directional_derivative,
         desc = xml_escape(&model.description),
         id = model.model_identifier,
     )
@@ -428,6 +439,12 @@ fn rust_table(model: &Model, guid: &str) -> String {
     )
     .unwrap();
     writeln!(r, "pub const GUID: &str = {guid:?};").unwrap();
+    writeln!(
+        r,
+        "pub const PROVIDES_DIRECTIONAL_DERIVATIVE: bool = {};",
+        model.provides_directional_derivative
+    )
+    .unwrap();
     writeln!(
         r,
         "pub const MODEL_DESCRIPTION_XML: &str = include_str!(concat!(env!(\"OUT_DIR\"), \"/{}.xml\"));",

@@ -1,4 +1,4 @@
-//! Speed of the contact element (issue 7): Hertz, FASTSIM, the normal models and a full wheelset
+//! Speed of the contact element: Hertz, FASTSIM, the normal models and a full wheelset
 //! evaluation per model pair, on the built-in S1002/UIC60 pair at 78.5 kN per wheel.
 //! `cargo bench --bench contact`; figures in docs/performance.md.
 

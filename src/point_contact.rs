@@ -1,6 +1,6 @@
 //! One elliptic contact point: Hertz normal contact, Kalker's creep coefficients and FASTSIM.
 //!
-//! This is the classic baseline of vehicle dynamics (Kalker 1982; physics.md §2–§4):
+//! This is the classic baseline of vehicle dynamics (Kalker 1982; docs/theory.md §2–§4):
 //! * normal problem: Hertz (H1–H4) from the normal force N and the relative curvatures A, B;
 //! * tangential problem: FASTSIM (F1–F4) on the Hertz ellipse, with C11, C22, C23 from Kalker's
 //!   table (K1–K3) for the ellipse's a/b.

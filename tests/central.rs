@@ -1,5 +1,5 @@
-//! The non-elliptic normal models on the seed study's central case against Kalker's exact theory
-//! (CONTACT v25.1; data in `tests/data/reference/central/`, see its README).
+//! The non-elliptic normal models on the central case (tests/data/README.md) against Kalker's exact
+//! theory (CONTACT v25.1; data in `tests/data/reference/central/`, see its README).
 //!
 //! Set-up (as the reference): right wheel, benchmark profiles `MBench_S1002_v3.prw` on
 //! `MBench_UIC60_v3.prr` (rail already inclined 1:40, so `rail_inclination = 0`), gauge 1435 mm at
@@ -142,7 +142,7 @@ fn central_case_against_the_exact_theory() {
         areas.insert(model, area);
         errors.insert(model, (area / r.area - 1.0, pmax / r.pmax - 1.0));
     }
-    // The acceptance: the better of STRIPES-A&B and ANALYN within ±10 % in area and
+    // Required: the better of STRIPES-A&B and ANALYN within ±10 % in area and
     // ±15 % in pmax of the exact theory.
     let within = |m: NormalModel| {
         let (ea, ep) = errors[&m];
@@ -154,9 +154,9 @@ fn central_case_against_the_exact_theory() {
         errors[&NormalModel::StripesAB],
         errors[&NormalModel::Analyn]
     );
-    // The seed: the virtual-penetration models' patches are too large — Linder's and
-    // Kik–Piotrowski's are both larger than either STRIPES variant's, and both well above the
-    // exact area (they are within 2 % of each other, Linder's lateral semi-axis being the
+    // As Sichani et al. (2014) found: the virtual-penetration models' patches are too large —
+    // Linder's and Kik–Piotrowski's are both larger than either STRIPES variant's, and both well
+    // above the exact area (they are within 2 % of each other, Linder's lateral semi-axis being the
     // virtual ellipse's from the margin's moments).
     for vp in [NormalModel::Linder, NormalModel::KikPiotrowski] {
         for other in [NormalModel::StripesB, NormalModel::StripesAB] {
@@ -175,7 +175,7 @@ fn central_case_against_the_exact_theory() {
 
 #[test]
 fn every_model_is_finite_over_lateral_shifts() {
-    // The acceptance: finite, positive area and pmax on shifts −1…+6 mm at 78.5 kN.
+    // Required: finite, positive area and pmax on shifts −1…+6 mm at 78.5 kN.
     for model in NormalModel::ALL {
         let mut ws = wheelset(model);
         let mut y = -1.0;

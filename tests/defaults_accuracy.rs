@@ -1,13 +1,13 @@
-//! Issue 7, item 5: the default discretisation (24 strips per patch, FASTSIM 24 elements along x
-//! and 20 strips across an ellipse, second-order march) keeps the tangential forces within 1 % of
-//! the same model's converged result: the model at 200 strips × 200 elements (200 × 200 on an
-//! ellipse), where the second-order march's own error is ~(1/200)² and the strip count's below
+//! Accuracy of the defaults: the default discretisation (24 strips per patch, FASTSIM 24 elements
+//! along x and 20 strips across an ellipse, second-order march) keeps the tangential forces within
+//! 1 % of the same model's converged result: the model at 200 strips × 200 elements (200 × 200 on
+//! an ellipse), where the second-order march's own error is ~(1/200)² and the strip count's below
 //! 0.1 % (docs/performance.md).
 //!
 //! Central case of the built-in S1002/UIC60 pair, 78.5 kN per wheel, right wheel, creepages
 //! prescribed at the patch: combined (ξ = 1e−3, η = 5e−4, φ = 0.05 1/m), pure spin (0.052 1/m)
 //! and pure ξ in partial slip (5e−4). The error is |F_t − F_t,ref| / |F_t,ref| with F_t = (Fx, Fy)
-//! summed over the wheel's patches. Measured: Hertz ≤ 0.7 %, ANALYN ≤ 0.6 %. STRIPES-A&B is not
+//! summed over the wheel's patches. Measured: Hertz ≤ 0.5 %, ANALYN ≤ 0.8 %. STRIPES-A&B is not
 //! asserted: its curvature correction depends on the strip width, so it has no converged result
 //! to be within 1 % of (documented in docs/performance.md).
 
@@ -17,7 +17,7 @@ use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::{Creepage, FastsimSettings};
 use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
 
-/// Tolerance of the issue: 1 % of the converged force.
+/// Required: within 1 % of the converged force.
 const TOLERANCE: f64 = 0.01;
 /// Discretisation of the converged reference (strips per patch, elements along and across).
 const FINE: usize = 200;

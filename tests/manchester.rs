@@ -1,8 +1,9 @@
 //! Wheelset contact geometry against the Manchester contact benchmark, case A-2.2, solved by
-//! CONTACT v25.1 (physics.md §8.5; data in `tests/data/reference/manchester/`).
+//! CONTACT v25.1 (Shackleton & Iwnicki 2008; set-up and data in `tests/data/README.md`,
+//! `tests/data/reference/manchester/`).
 //!
-//! Set-up (physics.md §8.5, as in the `.inp` files): benchmark profiles `MBench_S1002_v3.prw` on
-//! `MBench_UIC60_v3.prr` (rail already canted 1:40, so `rail_inclination = 0`), gauge 1435 mm at
+//! Set-up (tests/data/README.md, as in the `.inp` files): benchmark profiles `MBench_S1002_v3.prw`
+//! on `MBench_UIC60_v3.prr` (rail already canted 1:40, so `rail_inclination = 0`), gauge 1435 mm at
 //! 14 mm, flange-back distance 1360 mm, nominal radius 460 mm, G = 82 000 N/mm² and ν = 0.28
 //! (E = 2G(1 + ν)), μ = 0.3, 10 kN prescribed per wheel, vx = 2 m/s. The 21 states (lateral shift
 //! 0…10 mm, yaw 2.4 mrad per mm, CONTACT's pre-iterated roll and pitch velocity) are read from
@@ -20,10 +21,10 @@
 //!   the data by [`roll_sign_matches_contact`]; pitch velocity: ω = −`VPITCH` (CONTACT's forward
 //!   rolling is a negative rotation about its y axis).
 //!
-//! Acceptance (the issue's wording): "contact angle within 0.01 rad and the contact's lateral
-//! position on the rail within 1 mm for every tread state; the right wheel's jumps to flange-root
-//! contact (between 4.5 and 5.0 mm) and to the flange (between 6.0 and 6.5 mm) at the same
-//! lateral shifts as the reference".
+//! Required: contact angle within 0.01 rad and the contact's lateral position on the rail within
+//! 1 mm for every tread state; the right wheel's jumps to flange-root contact (between 4.5 and
+//! 5.0 mm) and to the flange (between 6.0 and 6.5 mm) at the same lateral shifts as the
+//! reference.
 //! * **Tread state**: a state whose *reference* contact angle is below [`TREAD_MAX_ANGLE`] = 0.2
 //!   rad in magnitude (right wheel 0…4.5 mm, left wheel all 21 states; the reference's next
 //!   larger angle is 0.29 rad at the flange root).
@@ -58,7 +59,7 @@ const G: f64 = 82e9;
 const NU: f64 = 0.28;
 const MU: f64 = 0.3;
 
-/// Acceptance tolerances (the issue's; not to be loosened).
+/// Required tolerances (not to be loosened).
 const ANGLE_TOL: f64 = 0.01; // rad
 const POSITION_TOL_MM: f64 = 1.0;
 /// Reference contact angles below this magnitude are tread states [rad].

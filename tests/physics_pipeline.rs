@@ -1,5 +1,5 @@
 //! Physics core end to end: curvatures → Hertz (H1–H4) → Kalker (K1) → FASTSIM (F1, F3), on the
-//! CONTACT `fastsim` example (physics.md §2.7 oracle 1 and §4.6).
+//! CONTACT `fastsim` example (docs/theory.md §2.7 and §4.6).
 
 use railcontact::normal::hertz::{contact_modulus, hertz_from_load, shear_modulus};
 use railcontact::tangential::fastsim::{
@@ -31,8 +31,8 @@ fn curvatures_to_tangential_forces() {
     let contact = oracle_patch();
     // Hertz recovers a = 8, b = 4 mm to the printed digits (±2e−4 relative, §2.7).
     assert!((contact.a / 8e-3 - 1.0).abs() < 2e-4 && (contact.b / 4e-3 - 1.0).abs() < 2e-4);
-    // K1 on the computed a/b (2.0000 ± 1e−4): the check values of §3.2 to 1e−3 (the table slope
-    // dC/d(b/a) ≤ 5 moves them by ≤ 5e−4 for a 1e−4 change of b/a).
+    // K1 on the computed a/b (2.0000 ± 1e−4): the check values of docs/theory.md §3.3 to 1e−3 (the
+    // table slope dC/d(b/a) ≤ 5 moves them by ≤ 5e−4 for a 1e−4 change of b/a).
     let c = creep_coefficients(contact.a, contact.b, NU).unwrap();
     assert!((c.c11 - 5.2037).abs() < 1e-3 && (c.c22 - 4.9715).abs() < 1e-3);
     assert!((c.c23 - 2.6566).abs() < 1e-3);

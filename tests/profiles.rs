@@ -35,7 +35,7 @@ fn temp_file(name: &str, bytes: &[u8]) -> PathBuf {
 /// mirror.y and inversion) and matches the built-in S1002. The file's points lie on the analytic
 /// F to 1.6e−6 mm; the difference is the interpolation of the file's 0.03–0.45 mm spacing: largest
 /// (measured ≈ 0.03 mm) next to s = −69.6, where the flange back turns vertical; ≈ 1e−3 mm over the
-/// flange and tread. Tolerances: 0.05 mm over −69.6…60 mm (the brief's), 2e−3 mm over −65…60 mm.
+/// flange and tread. Tolerances: 0.05 mm over −69.6…60 mm, 2e−3 mm over −65…60 mm.
 #[test]
 fn benchmark_wheel_matches_builtin_s1002() {
     let file = Profile::from_file(&bench("MBench_S1002_v3.prw"), None, 0.0).unwrap();
@@ -69,7 +69,7 @@ fn benchmark_wheel_matches_builtin_s1002() {
     assert!(matches!(e.reason, ErrorReason::KindMismatch { .. }), "{e}");
 }
 
-/// physics.md §8.4: the benchmark rail's head is 71.95 mm wide at z = 14 mm (±0.05 mm); the
+/// docs/theory.md §7.3: the benchmark rail's head is 71.95 mm wide at z = 14 mm (±0.05 mm); the
 /// origin is its highest point.
 #[test]
 fn benchmark_rail_head_width() {

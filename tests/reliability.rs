@@ -1338,7 +1338,8 @@ fn instantiation_is_refused_with_a_message() {
             "{messages:?}"
         );
     }
-    // No resource location: the built-in profiles still work (docs/integration.md).
+    // No resource location: the built-in profiles still work (docs/integration.md, "Bundled
+    // profiles and `resourceLocation`").
     let fmu = linked::fmu(wrc());
     let f = fmu
         .instantiate_as("noResources", wrc().guid, None)
@@ -1393,10 +1394,10 @@ fn walk(f: &Instance, walk: &mut PoseWalk, from: usize, steps: usize) -> Vec<Vec
         .collect()
 }
 
-/// The acceptance criterion of FMU states: a state saved at step 1 000 of a random walk of y,
-/// yaw, roll, loads and speeds and restored reproduces the outputs of steps 1 000–2 000 bit for
-/// bit — in the same instance (after it ran on to 2 000, so any internal state not in the FMU
-/// state differs) and, serialized, in a fresh instance.
+/// A state saved at step 1 000 of a random walk of y, yaw, roll, loads and speeds and restored
+/// reproduces the outputs of steps 1 000–2 000 bit for bit — in the same instance (after it ran on
+/// to 2 000, so any internal state not in the FMU state differs) and, serialized, in a fresh
+/// instance.
 #[test]
 fn a_state_saved_at_step_1000_reproduces_steps_1000_to_2000_bit_for_bit() {
     for (nm, tm) in [(1, 1), (4, 2), (6, 3)] {
@@ -1709,8 +1710,8 @@ fn strip_models_carry_the_prescribed_load_in_yawed_and_two_point_contact() {
     }
 }
 
-/// Two poses of the ANALYN soak (seed 20 240 601) that broke during the speed work, each from
-/// a cold start at the default strips. Step 111 358: the half-strip first layout put
+/// Two poses of the ANALYN soak (seed 20 240 601) that earlier versions of the strip layout
+/// failed, each from a cold start at the default strips. Step 111 358: the half-strip first layout put
 /// one strip centre in a notch of the right wheel's patch, and the restriping made two patches
 /// with overlapping strip ranges over the same contact (each run's range reaches one old strip
 /// beyond it): their forces added up — 17 % too much where the balance could not compensate,

@@ -2,8 +2,9 @@
 //! `fmi_host` harness (docs/reliability.md): a random walk of the wheelset pose (lateral shift,
 //! yaw, roll, both wheel loads, forward and lateral speed, yaw rate, axle speed) from a fixed
 //! seed, one `fmi2SetReal`, `fmi2DoStep` and `fmi2GetReal`/`fmi2GetInteger` of every output per
-//! step, with every 1 000 steps an FMU state taken, serialized and freed. Checked: every status OK, no output NaN or
-//! infinite, the vertical balance of both wheels, and a flat resident set size after warm-up.
+//! step, with every 1 000 steps an FMU state taken, serialized and freed. Checked: every status
+//! OK, no output NaN or infinite, the vertical balance of both wheels, and a flat resident set
+//! size after warm-up.
 //!
 //! * the full run, 1 000 000 steps (about 2 minutes in release):
 //!   `cargo test --release --test soak -- --ignored --nocapture`

@@ -1,8 +1,8 @@
 //! A step performs no heap allocation after initialisation: `Fastsim::solve` (physics core
 //! contract, `src/lib.rs`), the wheelset solver for every normal model and tangential option,
-//! and `fmi2DoStep` of the WheelRailContact FMU through its exported C functions (driven by the
-//! `fmi_host` harness). Counted with a global allocator wrapper; one test in this binary so that
-//! no other test thread allocates meanwhile.
+//! and `fmi2DoStep` and `fmi2GetDirectionalDerivative` of the WheelRailContact FMU through its
+//! exported C functions (driven by the `fmi_host` harness). Counted with a global allocator
+//! wrapper; one test in this binary so that no other test thread allocates meanwhile.
 
 mod common;
 mod linked;
@@ -79,7 +79,17 @@ fn do_step_does_not_allocate(model: i32) {
     assert_eq!(f.initialize(), Status::Ok);
     let (y, fx) = (f.vr("y"), f.vr("right.Fx"));
     let h = 1e-3;
+    // Directional derivatives of both forces along y and omega (the first call makes the
+    // scratch values; the later ones allocate nothing either).
+    let unknowns = [fx, f.vr("right.Fy")];
+    let knowns = [y, f.vr("omega")];
+    let seed = [1.0, 0.5];
+    let mut derivative = [0.0; 2];
     assert_eq!(f.step(0.0, h), Status::Ok);
+    assert_eq!(
+        f.directional_derivative_vr(&unknowns, &knowns, &seed, &mut derivative),
+        Status::Ok
+    );
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     let mut value = 0.0;
     for k in 0..=40 {
@@ -88,11 +98,18 @@ fn do_step_does_not_allocate(model: i32) {
         let (s, x) = f.get_real_vr(fx);
         assert_eq!(s, Status::Ok);
         value = x;
+        assert_eq!(
+            f.directional_derivative_vr(&unknowns, &knowns, &seed, &mut derivative),
+            Status::Ok
+        );
     }
     let n = ALLOCATIONS.load(Ordering::SeqCst) - before;
     f.free();
-    assert_eq!(n, 0, "normalModel {model}: {n} allocations in 41 DoSteps");
-    assert!(value.is_finite());
+    assert_eq!(
+        n, 0,
+        "normalModel {model}: {n} allocations in 41 DoSteps and derivative calls"
+    );
+    assert!(value.is_finite() && derivative.iter().all(|d| d.is_finite()));
 }
 
 #[test]

@@ -1,5 +1,5 @@
-//! Tangential contact on the seed's central case against Kalker's exact theory (CONTACT v25.1;
-//! `tests/data/reference/central/`): creep-force curves and pure spin.
+//! Tangential contact on the central case (tests/data/README.md) against Kalker's exact theory
+//! (CONTACT v25.1; `tests/data/reference/central/`): creep-force curves and pure spin.
 //!
 //! Set-up as `tests/central.rs` (right wheel, benchmark profiles, 78.5 kN, E = 210 GPa, ν = 0.28,
 //! μ = 0.3), with the creepages prescribed at the patch (CONTACT's own prescribed creepages:
@@ -84,7 +84,7 @@ fn right_total(out: &WheelsetResult) -> PatchResult {
     side.patches[0]
 }
 
-/// The options the acceptance is checked on (planar patch — the set-up of the half-space
+/// The options the required accuracy is checked on (planar patch — the set-up of the half-space
 /// reference): ANALYN with FaStrip (`tangentialModel` = 3, the closest) and with its own FASTSIM
 /// pairing (`tangentialModel` = 1, equivalent ellipse).
 const BEST: [(NormalModel, TangentialModel, bool); 2] = [
@@ -135,7 +135,7 @@ fn creep_curves_against_the_exact_theory() {
         let mean = sum / count as f64;
         println!("worst {worst:.4} mean {mean:.4}");
         if BEST.contains(&(model, t, planar)) {
-            // The acceptance: within 10 % of μN at every point, 5 % on average.
+            // Required: within 10 % of μN at every point, 5 % on average.
             assert!(worst < 0.10 && mean < 0.05, "worst {worst}, mean {mean}");
         }
     }
@@ -170,7 +170,7 @@ fn pure_spin_against_the_exact_theory() {
                 r["adh_fraction"]
             );
             if BEST.contains(&(model, t, planar)) {
-                // The acceptance: spin moment within 15 %, lateral force within 10 %.
+                // Required: spin moment within 15 %, lateral force within 10 %.
                 assert!(
                     (p.mz / mz_ref - 1.0).abs() < 0.15,
                     "Mz {} vs {mz_ref}",

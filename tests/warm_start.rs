@@ -1,4 +1,4 @@
-//! The load iteration's warm start (issue 7) changes the cost of a step, not its result: a
+//! The load iteration's warm start (docs/theory.md §8.3) changes the cost of a step, not its result: a
 //! wheelset solved after another pose gives the cold solution of the new pose, for the Hertz and
 //! the strip models, in tread and flange contact.
 

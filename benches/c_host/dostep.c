@@ -1,4 +1,4 @@
-/* A minimal FMI 2.0 Co-Simulation host in C (issue 7): loads the WheelRailContact FMU's shared
+/* A minimal FMI 2.0 Co-Simulation host in C: loads the WheelRailContact FMU's shared
  * library, sets the normal model and the wheel loads, and times N calls of fmi2DoStep.
  *
  * Usage: dostep LIB GUID RESOURCE_URI VR_NORMALMODEL MODEL VR_QLEFT VR_QRIGHT VR_Y STEPS MOVING

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Times fmi2DoStep of the packed WheelRailContact FMU from a C host (issue 7's acceptance):
+# Times fmi2DoStep of the packed WheelRailContact FMU from a C host:
 # 10 000 steps at the 78.5 kN central case for Hertz + FASTSIM and STRIPES A&B + FASTSIM (and
 # ANALYN), with constant inputs and with a moving wheelset (y = 3 mm sin 2πt at 1 ms steps).
 # Needs the packed FMU: `cargo run --release -p fmu-pack` first. Usage: benches/c_host/run.sh [STEPS]

@@ -1,114 +1,81 @@
 //! The layout of the command's JSON: objects and arrays down to [`PRETTY_DEPTH`] levels one
 //! member a line, indented by two spaces; deeper ones (a strip's row, a grid point, a traction
-//! element) on one line with `", "` and `": "` separators. Numbers are serde_json's: the shortest
-//! text that reads back to the same `f64`; a non-finite number is `null`.
+//! element) on one line with `", "` and `": "` separators. Numbers, strings and keys are
+//! serde_json's: the shortest text that reads back to the same `f64`; a non-finite number is
+//! `null`.
 
-use serde::Serialize;
-use serde_json::ser::Formatter;
-use std::io::{self, Write};
+use serde_json::Value;
 
 /// Nesting levels written one member a line (document, "strips", a patch's list of strips).
 pub const PRETTY_DEPTH: usize = 3;
 
 /// `value` as JSON text in this layout, with a final newline.
-pub fn to_text<T: Serialize + ?Sized>(value: &T) -> Result<String, serde_json::Error> {
-    let mut out = Vec::new();
-    let mut ser = serde_json::Serializer::with_formatter(&mut out, Layout::default());
-    value.serialize(&mut ser)?;
-    out.push(b'\n');
-    // serde_json writes UTF-8 only.
-    Ok(String::from_utf8_lossy(&out).into_owned())
+pub fn to_text(value: &Value) -> Result<String, serde_json::Error> {
+    let mut out = String::new();
+    write_value(&mut out, value, 1)?;
+    out.push('\n');
+    Ok(out)
 }
 
-/// serde_json formatter: pretty to [`PRETTY_DEPTH`], compact below.
-#[derive(Debug, Default)]
-struct Layout {
-    /// Nesting level of the innermost open array or object (1 = the document).
-    depth: usize,
-    /// Whether the innermost open array or object has a member yet.
-    has_value: bool,
-}
-
-impl Layout {
-    fn pretty(&self) -> bool {
-        self.depth <= PRETTY_DEPTH
-    }
-
-    fn begin<W: ?Sized + Write>(&mut self, w: &mut W, open: &[u8]) -> io::Result<()> {
-        self.depth += 1;
-        self.has_value = false;
-        w.write_all(open)
-    }
-
-    fn end<W: ?Sized + Write>(&mut self, w: &mut W, close: &[u8]) -> io::Result<()> {
-        let pretty = self.pretty();
-        self.depth -= 1;
-        if pretty && self.has_value {
-            w.write_all(b"\n")?;
-            indent(w, self.depth)?;
+/// Appends `value`, an array or object at nesting level `depth` (1 = the document).
+fn write_value(out: &mut String, value: &Value, depth: usize) -> Result<(), serde_json::Error> {
+    match value {
+        Value::Array(items) => {
+            let members = items.iter().map(|item| (None, item));
+            write_members(out, ('[', ']'), members, depth)
         }
-        w.write_all(close)
-    }
-
-    fn member<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
-        if self.pretty() {
-            w.write_all(if first { b"\n" } else { b",\n" })?;
-            indent(w, self.depth)
-        } else if first {
+        Value::Object(map) => {
+            let members = map.iter().map(|(key, item)| (Some(key), item));
+            write_members(out, ('{', '}'), members, depth)
+        }
+        scalar => {
+            out.push_str(&serde_json::to_string(scalar)?);
             Ok(())
-        } else {
-            w.write_all(b", ")
         }
     }
 }
 
-fn indent<W: ?Sized + Write>(w: &mut W, depth: usize) -> io::Result<()> {
-    for _ in 0..depth {
-        w.write_all(b"  ")?;
+/// Appends an array's items (no keys) or an object's members between `delimiters`: one a line,
+/// indented, down to [`PRETTY_DEPTH`]; below it on one line.
+fn write_members<'a>(
+    out: &mut String,
+    (open, close): (char, char),
+    members: impl Iterator<Item = (Option<&'a String>, &'a Value)>,
+    depth: usize,
+) -> Result<(), serde_json::Error> {
+    let pretty = depth <= PRETTY_DEPTH;
+    let separator = if pretty { ",\n" } else { ", " };
+    out.push(open);
+    let mut empty = true;
+    for (k, (key, item)) in members.enumerate() {
+        if k > 0 {
+            out.push_str(separator);
+        } else if pretty {
+            out.push('\n');
+        }
+        if pretty {
+            indent(out, depth);
+        }
+        if let Some(key) = key {
+            out.push_str(&serde_json::to_string(key)?);
+            out.push_str(": ");
+        }
+        write_value(out, item, depth + 1)?;
+        empty = false;
     }
+    if pretty && !empty {
+        out.push('\n');
+        indent(out, depth - 1);
+    }
+    out.push(close);
     Ok(())
 }
 
-impl Formatter for Layout {
-    fn begin_array<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
-        self.begin(w, b"[")
-    }
-
-    fn end_array<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
-        self.end(w, b"]")
-    }
-
-    fn begin_array_value<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
-        self.member(w, first)
-    }
-
-    fn end_array_value<W: ?Sized + Write>(&mut self, _w: &mut W) -> io::Result<()> {
-        self.has_value = true;
-        Ok(())
-    }
-
-    fn begin_object<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
-        self.begin(w, b"{")
-    }
-
-    fn end_object<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
-        self.end(w, b"}")
-    }
-
-    fn begin_object_key<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
-        self.member(w, first)
-    }
-
-    fn begin_object_value<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
-        w.write_all(b": ")
-    }
-
-    fn end_object_value<W: ?Sized + Write>(&mut self, _w: &mut W) -> io::Result<()> {
-        self.has_value = true;
-        Ok(())
+fn indent(out: &mut String, depth: usize) {
+    for _ in 0..depth {
+        out.push_str("  ");
     }
 }
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,5 +1,6 @@
 //! The `railcontact` command's library: case files ([`case`]), one evaluation as JSON ([`solve`]),
-//! the lateral-shift table ([`sweep`]) and the JSON layout ([`json`]). The binary (`main.rs`)
+//! the lateral-shift table ([`sweep`]), the equivalent conicity ([`conicity`]) and the JSON
+//! layout ([`json`]). The binary (`main.rs`)
 //! parses the command line and draws the report; the fuzz target `fuzz/fuzz_targets/case.rs`
 //! reads and applies case files through [`case`] and solves them through [`solve`].
 //!
@@ -7,6 +8,7 @@
 //! `initialize`, `evaluate`), so the command and the FMU give identical numbers.
 
 pub mod case;
+pub mod conicity;
 pub mod json;
 pub mod solve;
 pub mod sweep;

@@ -4,6 +4,9 @@
 //!   ([`railcontact_cli::solve`]);
 //! * `railcontact sweep [CASE.json] [--from Y0] [--to Y1] [--step DY]` — a text table over the
 //!   lateral shift `y` ([`railcontact_cli::sweep`]);
+//! * `railcontact conicity [CASE.json] [--amplitudes A,..] [--step DY] [--no-roll] [--out DIR]`
+//!   — the equivalent conicity (EN 15302) as JSON, with CSV tables and a figure in DIR
+//!   ([`railcontact_cli::conicity`], [`conicity_figure`]);
 //! * `railcontact report [CASE.json] [--out DIR] [--reference DIR] [--markdown FILE] [--quick]`
 //!   — the validation against CONTACT: figures, error tables and the validation document
 //!   ([`report`]).
@@ -12,13 +15,16 @@
 //! inside the profiles, or a load the normal model cannot carry), 3 implausible contact state
 //! (outputs printed, but beyond elastic half-space contact: [`railcontact::wheelset::validity`]).
 
+mod conicity_figure;
 mod report;
 
 use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
+use railcontact::models::wheel_rail_contact::generated::var;
+use railcontact_cli::conicity::ConicityOptions;
 use railcontact_cli::solve::{Extras, GRID_POINTS};
 use railcontact_cli::sweep::SweepRange;
-use railcontact_cli::{case, json, solve, sweep, Failure, IMPLAUSIBLE};
+use railcontact_cli::{case, conicity, json, solve, sweep, Failure, IMPLAUSIBLE};
 use std::io::Write as _;
 use std::path::PathBuf;
 
@@ -58,6 +64,7 @@ Exit codes:
     override_usage = "\
 railcontact solve [CASE.json] [--grid NX] [--traction]
        railcontact sweep [CASE.json] [--from Y0] [--to Y1] [--step DY]
+       railcontact conicity [CASE.json] [--amplitudes A,..] [--step DY] [--no-roll] [--out DIR]
        railcontact report [CASE.json] [--out DIR] [--reference DIR] [--markdown FILE] [--quick]
        railcontact help [COMMAND] | --help | -h"
 )]
@@ -70,6 +77,7 @@ struct Cli {
 enum Command {
     Solve(SolveArgs),
     Sweep(SweepArgs),
+    Conicity(ConicityArgs),
     Report(report::ReportArgs),
 }
 
@@ -131,6 +139,45 @@ struct SweepArgs {
         allow_negative_numbers = true
     )]
     step: f64,
+}
+
+/// Computes the equivalent conicity (EN 15302) of the case's profiles on its track
+///
+/// Shifts the rigid wheelset laterally by y on its track (the case's wheelProfile, railProfile,
+/// profileSmoothing, railInclination, trackGauge, flangeBackDistance, wheelRadius, scanStep; the
+/// rest of the case is ignored), lets it roll until both wheels touch their rails, and takes the
+/// rolling-radius difference dr(y) = r_right - r_left. Prints JSON: the set-up, r0 and e0 (mean
+/// rolling radius and half the contact-point distance of the centred wheelset) [m], "conicity"
+/// per amplitude A [m] (harmonic linearisation, EN 15302 Annex C; Klingel integration, Annex B,
+/// with its wavelength [m]; null where the motion does not oscillate) and "deltaR" per shift
+/// (y, deltaR, roll, rRight, rLeft, yRailRight, yRailLeft, contactAngleRight,
+/// contactAngleLeft; m and rad).
+///
+/// With --out DIR it also writes DIR/conicity.json, DIR/conicity.csv (lambda per amplitude),
+/// DIR/delta_r.csv and the figure DIR/conicity.svg and DIR/conicity.png.
+#[derive(Debug, Args)]
+#[command(after_help = format!("{CASE_HELP}\n\n{EXIT_CODES}"))]
+struct ConicityArgs {
+    /// The case file ('-': standard input; none: the start values, S1002 on UIC60 at 1:40)
+    #[arg(value_name = "CASE.json")]
+    case: Option<String>,
+    /// Amplitudes of the lateral motion [m], comma-separated, each in (0, 0.02]
+    #[arg(
+        long,
+        value_name = "A,..",
+        value_delimiter = ',',
+        default_values_t = railcontact::wheelset::conicity::DEFAULT_AMPLITUDES
+    )]
+    amplitudes: Vec<f64>,
+    /// Step between the lateral shifts of dr(y) [m], > 0
+    #[arg(long, value_name = "DY", default_value_t = railcontact::wheelset::conicity::DEFAULT_Y_STEP)]
+    step: f64,
+    /// Keeps the wheelset level (no roll): each wheel touches its rail on its own
+    #[arg(long)]
+    no_roll: bool,
+    /// Writes the JSON, the CSV tables and the figure into this directory (created if missing)
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
 }
 
 /// `--grid`: a whole number of points per strip in [`GRID_POINTS`].
@@ -215,8 +262,48 @@ fn run(command: Command) -> Result<i32, Failure> {
                 0
             })
         }
+        Command::Conicity(a) => run_conicity(&a),
         Command::Report(a) => report::run(&a),
     }
+}
+
+fn run_conicity(a: &ConicityArgs) -> Result<i32, Failure> {
+    let values = case::load(a.case.as_deref())?;
+    let options = ConicityOptions {
+        amplitudes: a.amplitudes.clone(),
+        step: a.step,
+        roll: !a.no_roll,
+    };
+    let run = conicity::conicity(&values, &options)?;
+    let doc = conicity::to_json(&values, &run);
+    let text =
+        json::to_text(&doc).map_err(|e| Failure::Error(format!("cannot write the JSON: {e}")))?;
+    if let Some(dir) = &a.out {
+        let write = |name: &str, content: &str| {
+            let path = dir.join(name);
+            std::fs::write(&path, content)
+                .map_err(|e| Failure::Error(format!("{}: cannot write: {e}", path.display())))
+        };
+        std::fs::create_dir_all(dir)
+            .map_err(|e| Failure::Error(format!("{}: cannot create: {e}", dir.display())))?;
+        write("conicity.json", &text)?;
+        write("conicity.csv", &conicity::conicity_csv(&run))?;
+        write("delta_r.csv", &conicity::delta_r_csv(&run))?;
+        report::plot::register_font().map_err(Failure::Error)?;
+        let setup = format!(
+            "{} on {}, inclination {:.4} rad, gauge {} mm, flange backs {} mm{}",
+            values.string(var::wheelProfile),
+            values.string(var::railProfile),
+            values.real(var::railInclination),
+            values.real(var::trackGauge) * 1e3,
+            values.real(var::flangeBackDistance) * 1e3,
+            if options.roll { "" } else { ", no roll" }
+        );
+        let figure = conicity_figure::ConicityFigure { run: &run, setup };
+        report::plot::render(&figure, dir).map_err(Failure::Error)?;
+    }
+    emit(&text)?;
+    Ok(0)
 }
 
 /// Writes `text` to standard output (an error such as a closed pipe is a failure, not a panic).

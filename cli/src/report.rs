@@ -1,8 +1,8 @@
-//! `railcontact report [CASE.json] [--out DIR] [--reference DIR] [--quick]`: reproduces the seed
-//! study's comparison of the normal and tangential models against Kalker's exact theory as SVG
+//! `railcontact report [CASE.json] [--out DIR] [--reference DIR] [--quick]`: reproduces the
+//! comparison of the normal and tangential models against Kalker's exact theory as SVG
 //! and PNG figures, a markdown summary (`report.md`) and an error table (`errors.csv`).
 //!
-//! The case: without CASE.json the seed's central case — the benchmark profiles
+//! The case: without CASE.json the central case (tests/data/README.md) — the benchmark profiles
 //! `MBench_S1002_v3.prw` on `MBench_UIC60_v3.prr` from `<reference>/../profiles` (or
 //! `tests/data/profiles`; rail already inclined 1:40, so `railInclination` = 0), gauge 1435 mm,
 //! flange-back distance 1360 mm, radius 460 mm, E = 210 GPa, ν = 0.28, μ = 0.3, 78.5 kN per
@@ -11,7 +11,7 @@
 //! reads it (keys not given keep the FMU's start values). Each figure sets `normalModel`,
 //! `tangentialModel`, `planarPatch`, the creepages or the lateral shift `y` itself.
 //!
-//! The reference (CONTACT's solution of the seed's central case): `--reference DIR`, else
+//! The reference (CONTACT's solution of the central case): `--reference DIR`, else
 //! `tests/data/reference` when that directory exists, else none — then the figures show the
 //! models alone and the error table is left out.
 //!
@@ -21,14 +21,14 @@
 //! figure on stderr.
 
 mod figures;
-mod plot;
+pub mod plot;
 mod reference;
 mod study;
 mod tables;
 
 use crate::{workspace_root, Failure};
-use figures::{Creep, Outlines, Pressure, ShiftRuns, Shifts, Spin};
-use plot::{render, Figure};
+use figures::{Creep, Outlines, Pressure, ReportFigure, ShiftRuns, Shifts, Spin};
+use plot::render;
 use railcontact::fmi::variables::Values;
 use railcontact::models::wheel_rail_contact::{generated::var, INFO};
 use railcontact::normal::NormalModel;
@@ -51,12 +51,12 @@ const CREEP_FULL: [f64; 16] = [
 ];
 /// Creepages of the creep curves with `--quick` (the reference's).
 const CREEP_QUICK: [f64; 6] = [0.0, 0.0005, 0.001, 0.002, 0.005, 0.01];
-/// The benchmark profile files of the seed's set-up.
+/// The benchmark profile files of the central case.
 const WHEEL_FILE: &str = "MBench_S1002_v3.prw";
 const RAIL_FILE: &str = "MBench_UIC60_v3.prr";
-/// Seed set-up: load per wheel [N], speed [m/s].
-const SEED_LOAD: f64 = 78_500.0;
-const SEED_SPEED: f64 = 2.0;
+/// The central case: load per wheel [N], speed [m/s].
+const CENTRAL_LOAD: f64 = 78_500.0;
+const CENTRAL_SPEED: f64 = 2.0;
 /// Number of figures (for the progress lines).
 const FIGURES: usize = 6;
 /// The vendored data, relative to the workspace root.
@@ -65,19 +65,19 @@ const PROFILE_DIR: &str = "tests/data/profiles";
 
 /// Regenerates the validation against CONTACT: figures, error tables and their document
 ///
-/// Reproduces the seed study's validation against CONTACT (Kalker's exact theory): writes SVG
+/// Reproduces the validation against CONTACT (Kalker's exact theory): writes SVG
 /// and PNG figures (patch outlines, pressure per strip, pure-spin traction planar and
 /// non-planar, STRIPES over lateral shifts, creep curves), errors.csv and a markdown document
-/// with the set-up and the error tables into --out DIR. Without CASE.json: the seed's central
-/// case (the benchmark profiles next to the reference directory or in the repository's
-/// tests/data/profiles, else the built-in S1002/UIC60 at 1:40; 78.5 kN, E = 210 GPa,
+/// with the set-up and the error tables into --out DIR. Without CASE.json: the central
+/// case of tests/data/README.md (the benchmark profiles next to the reference directory or in the
+/// repository's tests/data/profiles, else the built-in S1002/UIC60 at 1:40; 78.5 kN, E = 210 GPa,
 /// nu = 0.28, mu = 0.3, centred). Progress on stderr.
 ///
 /// The repository's docs/validation.md and docs/figures/ are this command's output:
 ///   railcontact report --out docs/figures --markdown docs/validation.md
 #[derive(Debug, Clone, PartialEq, clap::Args)]
 pub struct ReportArgs {
-    /// A case file, read as `solve` reads it (none: the seed's central case)
+    /// A case file, read as `solve` reads it (none: the central case)
     #[arg(value_name = "CASE.json")]
     pub case: Option<String>,
     /// Directory of the figures and errors.csv (created if needed)
@@ -124,9 +124,9 @@ fn profile_dir(reference: Option<&Path>) -> Option<PathBuf> {
         .find(|d| d.join(WHEEL_FILE).is_file() && d.join(RAIL_FILE).is_file())
 }
 
-/// The seed's central case as FMU values: benchmark profiles from `profiles` (rail inclined in
+/// The central case as FMU values: benchmark profiles from `profiles` (rail inclined in
 /// the file), else the built-in S1002/UIC60 with 1:40.
-fn seed_values(profiles: Option<&Path>) -> Values {
+fn central_values(profiles: Option<&Path>) -> Values {
     let mut v = Values::from_start(INFO.variables, INFO.counts);
     if let Some(dir) = profiles {
         v.strings[var::wheelProfile.0] = dir.join(WHEEL_FILE).to_string_lossy().into_owned();
@@ -137,14 +137,14 @@ fn seed_values(profiles: Option<&Path>) -> Values {
     v.set_real(var::nu, 0.28);
     v.set_real(var::mu, 0.3);
     v.set_integer(var::verticalMode, 1);
-    v.set_real(var::Qleft, SEED_LOAD);
-    v.set_real(var::Qright, SEED_LOAD);
+    v.set_real(var::Qleft, CENTRAL_LOAD);
+    v.set_real(var::Qright, CENTRAL_LOAD);
     for input in [var::y, var::yaw, var::roll, var::vy, var::yawRate] {
         v.set_real(input, 0.0);
     }
     v.set_integer(var::creepageMode, 1);
-    v.set_real(var::vx, SEED_SPEED);
-    v.set_real(var::omega, SEED_SPEED / v.real(var::wheelRadius));
+    v.set_real(var::vx, CENTRAL_SPEED);
+    v.set_real(var::omega, CENTRAL_SPEED / v.real(var::wheelRadius));
     v
 }
 
@@ -179,8 +179,8 @@ struct Output<'a> {
 
 impl Output<'_> {
     /// Writes `figure` and prints its progress line ("[k/n] path … seconds since `started`").
-    fn figure<F: Figure>(&mut self, figure: &F, started: Instant) -> Result<(), Failure> {
-        let paths = render(figure, self.dir).map_err(Failure::Error)?;
+    fn figure(&mut self, figure: ReportFigure, started: Instant) -> Result<(), Failure> {
+        let paths = render(&figure, self.dir).map_err(Failure::Error)?;
         eprintln!(
             "railcontact report: [{}/{FIGURES}] {} (.svg, .png) in {:.2} s",
             self.files.len() + 1,
@@ -214,7 +214,7 @@ pub(crate) fn run(args: &ReportArgs) -> Result<i32, Failure> {
     let profiles = profile_dir(reference_dir.as_deref());
     let values = match &args.case {
         Some(path) => case::load(Some(path))?,
-        None => seed_values(profiles.as_deref()),
+        None => central_values(profiles.as_deref()),
     };
     let study = Study::new(values)?;
     std::fs::create_dir_all(&args.out).map_err(|e| {
@@ -308,7 +308,7 @@ fn normal_figures(
         reference: out.reference,
         setup: out.setup.clone(),
     };
-    out.figure(&outlines, t)?;
+    out.figure(ReportFigure::Outlines(outlines), t)?;
 
     let t = Instant::now();
     let unsmoothed = if study.b_smoothing() > 0.0 {
@@ -326,7 +326,7 @@ fn normal_figures(
         reference: out.reference,
         setup: out.setup.clone(),
     };
-    out.figure(&pressure, t)?;
+    out.figure(ReportFigure::Pressure(pressure), t)?;
     Ok((normal, unsmoothed))
 }
 
@@ -359,7 +359,7 @@ fn spin_figures(study: &Study, out: &mut Output) -> Result<(Vec<SpinRun>, Vec<Sp
             scale_mpa,
             axes: axes.clone(),
         };
-        out.figure(&figure, t)?;
+        out.figure(ReportFigure::Spin(figure), t)?;
         t = Instant::now();
     }
     Ok((planar, nonplanar))
@@ -391,7 +391,7 @@ fn shift_figure(study: &Study, out: &mut Output) -> Result<Vec<ShiftRuns>, Failu
             .unwrap_or_default()
             .to_string(),
     };
-    out.figure(&figure, t)?;
+    out.figure(ReportFigure::Shifts(figure), t)?;
     Ok(shifts)
 }
 
@@ -439,7 +439,7 @@ fn creep_figure(
         reference: out.reference,
         setup: out.setup.clone(),
     };
-    out.figure(&figure, t)?;
+    out.figure(ReportFigure::Creep(figure), t)?;
     Ok((own, others))
 }
 
@@ -499,9 +499,9 @@ impl Document<'_> {
             md,
             "railcontact's normal models (`normalModel` 1–6) and tangential options \
              (`tangentialModel` 1–4) against CONTACT, which solves Kalker's exact half-space \
-             theory, on the seed study's central case: normal contact (patch area, maximum \
-             pressure, maximum pressure per strip), pure spin (forces, spin moment, slip zone) and \
-             creep-force curves. CONTACT's numbers are read from its solutions in the reference \
+             theory, on the central case of `tests/data/README.md`: normal contact (patch area, \
+             maximum pressure, maximum pressure per strip), pure spin (forces, spin moment, slip \
+             zone) and creep-force curves. CONTACT's numbers are read from its solutions in the reference \
              directory; railcontact's are computed by the FMU's own code at its default settings.\n"
         );
         let _ = writeln!(
@@ -525,7 +525,7 @@ impl Document<'_> {
         let mut md = String::from("## Set-up\n\n");
         let case = match &self.args.case {
             Some(c) => format!("case file `{c}` (keys not given keep the FMU's start values)"),
-            None => "the seed study's central case (no case file)".to_string(),
+            None => "the central case (no case file)".to_string(),
         };
         let _ = writeln!(md, "* Case: {case}.");
         let inclination = v.real(var::railInclination);
@@ -572,14 +572,14 @@ impl Document<'_> {
             Some(r) => {
                 let _ = writeln!(
                     md,
-                    "* Reference: CONTACT (Kalker's exact theory) in `{}`, central case (the \
-                     seed's set-up: benchmark profiles, 78.5 kN, centred).",
+                    "* Reference: CONTACT (Kalker's exact theory) in `{}`, central case (its \
+                     set-up: benchmark profiles, 78.5 kN, centred).",
                     shown_path(&r.dir)
                 );
                 if self.args.case.is_some() {
                     let _ = writeln!(
                         md,
-                        "* Note: the reference solves the seed's set-up, not this case file's; \
+                        "* Note: the reference solves the central case, not this case file's; \
                          where the two differ the errors below are not errors of the models."
                     );
                 }
@@ -637,20 +637,11 @@ impl Document<'_> {
         let _ = writeln!(md, "\n## Model figures\n");
         let _ = writeln!(md, "| model | patches | area mm² | pmax MPa |");
         let _ = writeln!(md, "|---|---|---|---|");
-        for run in &runs.normal {
+        let unsmoothed = runs.unsmoothed.iter().map(|run| (run, ", bSmoothing = 0"));
+        for (run, variant) in runs.normal.iter().map(|run| (run, "")).chain(unsmoothed) {
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.2} | {:.2} |",
-                plot::model_label(run.model),
-                run.patches.len(),
-                run.totals.area * 1e6,
-                run.totals.pmax * 1e-6
-            );
-        }
-        if let Some(run) = &runs.unsmoothed {
-            let _ = writeln!(
-                md,
-                "| {}, bSmoothing = 0 | {} | {:.2} | {:.2} |",
+                "| {}{variant} | {} | {:.2} | {:.2} |",
                 plot::model_label(run.model),
                 run.patches.len(),
                 run.totals.area * 1e6,
@@ -699,13 +690,10 @@ impl Document<'_> {
                 )
             });
             let s = &r.spin;
+            let [fx, fy, mz, slip] = tables::spin_cells(s.fx_n, s.fs_n, s.mz_nm(), s.slip_share());
             let _ = writeln!(
                 md,
-                "| CONTACT (exact) | yes | {:.1} | {:.1} | {:.3} | {:.2} % | {} |",
-                s.fx_n,
-                s.fs_n,
-                s.mn_nmm * 1e-3,
-                100.0 * (1.0 - s.adhesion_fraction),
+                "| CONTACT (exact) | yes | {fx} | {fy} | {mz} | {slip} | {} |",
                 centroid(c)
             );
         }
@@ -715,19 +703,17 @@ impl Document<'_> {
             .filter(|r| r.model != NormalModel::Hertz);
         for run in runs.spin_planar.iter().chain(nonplanar_strips) {
             let t = &run.normal.totals;
+            let [fx, fy, mz, slip] =
+                tables::spin_cells(t.fx, t.fy, t.mz, 100.0 * (1.0 - t.adhesion));
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.1} | {:.1} | {:.3} | {:.2} % | {} |",
+                "| {} | {} | {fx} | {fy} | {mz} | {slip} | {} |",
                 plot::model_label(run.model),
                 if run.planar || run.model == NormalModel::Hertz {
                     "yes"
                 } else {
                     "no"
                 },
-                t.fx,
-                t.fy,
-                t.mz,
-                100.0 * (1.0 - t.adhesion),
                 centroid(study::slip_centroid(&run.cells))
             );
         }
@@ -872,12 +858,12 @@ mod tests {
 
     #[test]
     fn seed_values_are_the_central_case() {
-        let v = seed_values(Some(Path::new("/p")));
+        let v = central_values(Some(Path::new("/p")));
         assert_eq!(v.string(var::wheelProfile), "/p/MBench_S1002_v3.prw");
         assert_eq!(v.real(var::railInclination), 0.0);
         assert_eq!(v.real(var::Qright), 78_500.0);
         assert_eq!(v.real(var::omega), 2.0 / 0.46);
-        let builtin = seed_values(None);
+        let builtin = central_values(None);
         assert_eq!(builtin.string(var::wheelProfile), "S1002");
         assert!(builtin.real(var::railInclination) > 0.02);
     }

@@ -11,7 +11,7 @@ use railcontact::fmi::model::InstanceContext;
 use railcontact::fmi::variables::{Causality, Values, VarType};
 use railcontact::models::wheel_rail_contact::INFO;
 use serde_json::{Map, Value};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn run(args: &[&str]) -> Output {
@@ -27,6 +27,35 @@ fn stdout(o: &Output) -> String {
 
 fn stderr(o: &Output) -> String {
     String::from_utf8(o.stderr.clone()).expect("UTF-8 messages")
+}
+
+/// Asserts that `text` holds every one of `parts`.
+fn assert_mentions<S: AsRef<str>>(text: &str, parts: &[S]) {
+    for part in parts.iter().map(AsRef::as_ref) {
+        assert!(text.contains(part), "{part:?} in {text}");
+    }
+}
+
+/// Runs `solve` on `case`, asserts its exit code; returns the output and the messages.
+fn solve_exiting(case: &Path, code: i32) -> (Output, String) {
+    let o = run(&["solve", case.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(code), "{err}");
+    (o, err)
+}
+
+/// Runs `sweep` on `case` with `options`.
+fn sweep(case: &Path, options: &[&str]) -> Output {
+    let case = case.to_str().unwrap();
+    run(&[&["sweep", case][..], options].concat())
+}
+
+/// The table rows of `sweep`'s output: the lines after the comments and the header.
+fn sweep_rows(text: &str) -> Vec<&str> {
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .collect()
 }
 
 /// A fresh file in a per-process temporary directory.
@@ -177,54 +206,28 @@ fn solve_with_a_case_file_follows_qright_and_y() {
     assert!(real(&doc, "right.p1.Fn") > real(&base, "right.p1.Fn") + 20e3);
 }
 
+/// Case files with one error each, one a line: file name | case text (`\n` for a line break) |
+/// the parts its message must hold.
+const CASE_ERRORS: &str = r#"
+unknown.json | {"y": 0.001, "gauge": 1.5} | unknown key "gauge" = 1.5 | allowed keys: wheelProfile
+nu.json | {"nu": 0.7} | nu = 0.7 is outside the allowed range [0, 0.5]
+mu.json | {"mu": 0} | mu = 0 is outside the allowed range (0, 10]
+type.json | {"Qright": "90 kN"} | Qright = "90 kN" has the wrong type: expected a number in [0, 10000000] [N]
+int.json | {"nx": 2.5} | nx = 2.5 has the wrong type: expected an integer in [1, 1000]
+output.json | {"left.Fy": 0} | 'left.Fy' is an output
+syntax.json | {\n  "y": 0.001,\n} | syntax.json', line 3, column 1: trailing comma
+"#;
+
 #[test]
 fn case_errors_name_key_value_and_range() {
-    for (name, text, expected) in [
-        (
-            "unknown.json",
-            "{\"y\": 0.001, \"gauge\": 1.5}",
-            &["unknown key \"gauge\" = 1.5", "allowed keys: wheelProfile"][..],
-        ),
-        (
-            "nu.json",
-            "{\"nu\": 0.7}",
-            &["nu = 0.7 is outside the allowed range [0, 0.5]"][..],
-        ),
-        (
-            "mu.json",
-            "{\"mu\": 0}",
-            &["mu = 0 is outside the allowed range (0, 10]"][..],
-        ),
-        (
-            "type.json",
-            "{\"Qright\": \"90 kN\"}",
-            &["Qright = \"90 kN\" has the wrong type: expected a number in [0, 10000000] [N]"][..],
-        ),
-        (
-            "int.json",
-            "{\"nx\": 2.5}",
-            &["nx = 2.5 has the wrong type: expected an integer in [1, 1000]"][..],
-        ),
-        (
-            "output.json",
-            "{\"left.Fy\": 0}",
-            &["'left.Fy' is an output"][..],
-        ),
-        (
-            "syntax.json",
-            "{\n  \"y\": 0.001,\n}",
-            &["syntax.json', line 3, column 1: trailing comma"][..],
-        ),
-    ] {
-        let case = temp_file(name, text);
-        let o = run(&["solve", case.to_str().unwrap()]);
-        let err = stderr(&o);
-        assert_eq!(o.status.code(), Some(1), "{name}: {err}");
+    for line in CASE_ERRORS.lines().filter(|l| !l.is_empty()) {
+        let mut fields = line.split(" | ");
+        let (name, text) = (fields.next().unwrap(), fields.next().unwrap());
+        let case = temp_file(name, &text.replace("\\n", "\n"));
+        let (o, err) = solve_exiting(&case, 1);
         assert!(o.stdout.is_empty(), "{name}");
-        assert!(err.contains(name), "{name}: {err}");
-        for e in expected {
-            assert!(err.contains(e), "{name}: {err}");
-        }
+        let parts: Vec<&str> = std::iter::once(name).chain(fields).collect();
+        assert_mentions(&err, &parts);
     }
     let o = run(&["solve", "/nonexistent/case.json"]);
     assert_eq!(o.status.code(), Some(1));
@@ -266,19 +269,18 @@ fn a_wheel_with_its_flange_on_the_wrong_side_exits_with_1() {
         "unmirrored.json",
         "{\"wheelProfile\": \"unmirrored.prw\", \"railProfile\": \"UIC60\"}",
     );
-    let o = run(&["solve", case.to_str().unwrap()]);
-    let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{err}");
+    let (o, err) = solve_exiting(&case, 1);
     assert!(o.stdout.is_empty());
-    for part in [
-        "wheelProfile = \"".to_string(),
-        format!("profile file '{}', line ", wheel.display()),
-        "the flange (its tip 30.6 mm high at y = +54.9 mm) lies on the field side".to_string(),
-        "the profile is not mirrored".to_string(),
-        "toggle mirror.y".to_string(),
-    ] {
-        assert!(err.contains(&part), "{part:?} in {err}");
-    }
+    assert_mentions(
+        &err,
+        &[
+            "wheelProfile = \"".to_string(),
+            format!("profile file '{}', line ", wheel.display()),
+            "the flange (its tip 30.6 mm high at y = +54.9 mm) lies on the field side".to_string(),
+            "the profile is not mirrored".to_string(),
+            "toggle mirror.y".to_string(),
+        ],
+    );
     let good = temp_file(
         "benchmark_wheel.json",
         &format!(
@@ -286,8 +288,7 @@ fn a_wheel_with_its_flange_on_the_wrong_side_exits_with_1() {
             Value::from(benchmark.to_str().unwrap())
         ),
     );
-    let o = run(&["solve", good.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    solve_exiting(&good, 0);
 }
 
 #[test]
@@ -295,9 +296,7 @@ fn pose_off_the_rail_exits_with_2() {
     // On standard gauge the built-in S1002 still finds the rail at |y| <= 0.05 (its flange tip
     // rides on the crown); on 1.5 m gauge the left wheel falls inside its rail at y = 0.04.
     let case = temp_file("off.json", "{\"y\": 0.04, \"trackGauge\": 1.5}");
-    let o = run(&["solve", case.to_str().unwrap()]);
-    let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(2), "{err}");
+    let (o, err) = solve_exiting(&case, 2);
     assert!(o.stdout.is_empty());
     assert!(
         err.contains("no contact: left wheel: no rigid contact inside the profiles' range"),
@@ -340,22 +339,10 @@ fn sweep_prints_a_header_and_one_row_per_shift() {
 
     // Shifts where a wheel leaves the profiles get a note, and the sweep goes on.
     let case = temp_file("wide_gauge.json", "{\"trackGauge\": 1.5}");
-    let o = run(&[
-        "sweep",
-        case.to_str().unwrap(),
-        "--from",
-        "0.03",
-        "--to=0.045",
-        "--step",
-        "0.005",
-    ]);
+    let o = sweep(&case, &["--from", "0.03", "--to=0.045", "--step", "0.005"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let text = stdout(&o);
-    let rows: Vec<&str> = text
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .skip(1)
-        .collect();
+    let rows = sweep_rows(&text);
     assert_eq!(rows.len(), 4, "{text}");
     assert!(!rows[0].contains("no contact"), "{text}");
     for row in &rows[2..] {
@@ -377,37 +364,27 @@ fn sweep_prints_a_header_and_one_row_per_shift() {
 #[test]
 fn implausible_state_exits_with_3_and_prints_the_outputs() {
     let case = temp_file("deep.json", "{\"verticalMode\": 2, \"z\": 0.05}");
-    let o = run(&["solve", case.to_str().unwrap()]);
-    let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(3), "{err}");
+    let (o, err) = solve_exiting(&case, 3);
     let doc = parse(&stdout(&o));
     check_solution(&doc);
     let penetration = real(&doc, "left.p1.penetration");
     assert!(penetration > 1e-3, "{penetration}");
-    for part in [
-        "railcontact: warning: implausible contact state: left wheel, patch 1:".to_string(),
-        format!("penetration = {penetration:.4e} m exceeds the limit 1e-3 m"),
-        "the prescribed position z = 0.05 m (verticalMode = 2) pushes the left wheel".to_string(),
-        "not physical".to_string(),
-    ] {
-        assert!(err.contains(&part), "{part:?} in {err}");
-    }
+    assert_mentions(
+        &err,
+        &[
+            "railcontact: warning: implausible contact state: left wheel, patch 1:".to_string(),
+            format!("penetration = {penetration:.4e} m exceeds the limit 1e-3 m"),
+            "the prescribed position z = 0.05 m (verticalMode = 2) pushes the left wheel"
+                .to_string(),
+            "not physical".to_string(),
+        ],
+    );
 
     let fine = temp_file("shallow.json", "{\"verticalMode\": 2, \"z\": 0.0005}");
-    let o = run(&["solve", fine.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+    let (_, err) = solve_exiting(&fine, 0);
+    assert!(err.is_empty(), "{err}");
 
-    let o = run(&[
-        "sweep",
-        case.to_str().unwrap(),
-        "--from",
-        "0",
-        "--to",
-        "0.001",
-        "--step",
-        "0.001",
-    ]);
+    let o = sweep(&case, &["--from", "0", "--to", "0.001", "--step", "0.001"]);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(3), "{err}");
     assert!(
@@ -415,11 +392,7 @@ fn implausible_state_exits_with_3_and_prints_the_outputs() {
         "{err}"
     );
     let text = stdout(&o);
-    let rows: Vec<&str> = text
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .skip(1)
-        .collect();
+    let rows = sweep_rows(&text);
     assert_eq!(rows.len(), 2, "{text}");
     for row in rows {
         assert!(
@@ -434,16 +407,14 @@ fn help_and_bad_arguments() {
     for args in [&["--help"][..], &["-h"], &["help"]] {
         let o = run(args);
         assert_eq!(o.status.code(), Some(0));
-        let text = stdout(&o);
-        for part in [
+        let parts = [
             "railcontact solve [CASE.json]",
             "railcontact sweep [CASE.json]",
             "railcontact report [CASE.json]",
             "Exit codes:",
             "3  implausible contact state",
-        ] {
-            assert!(text.contains(part), "{part:?} in {text}");
-        }
+        ];
+        assert_mentions(&stdout(&o), &parts);
     }
     for (command, option) in [("solve", "--grid <NX>"), ("sweep", "--step <DY>")] {
         for args in [&[command, "--help"][..], &["help", command]] {
@@ -592,5 +563,71 @@ fn solve_with_traction_gives_the_tangential_field() {
     assert!(
         fx < 0.0 && ((fx - fx_out) / fx_out).abs() < 1e-9,
         "{fx} vs {fx_out}"
+    );
+}
+
+/// `conicity`: the JSON's λ(A) at the default amplitudes (the library's numbers, tested against
+/// a cone and the benchmark profiles in `tests/conicity.rs`), the CSV tables and the figure in
+/// `--out`, `--no-roll`, and a bad amplitude named with exit code 1.
+#[test]
+fn conicity_prints_the_table_and_writes_csv_and_figure() {
+    let dir = std::env::temp_dir().join(format!("railcontact-conicity-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().unwrap();
+    let o = run(&["conicity", "--out", out]);
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
+    let doc = parse(&stdout(&o));
+    let table = doc["conicity"].as_array().expect("conicity");
+    let amplitudes: Vec<f64> = table
+        .iter()
+        .map(|c| c["amplitude"].as_f64().unwrap())
+        .collect();
+    assert_eq!(amplitudes, [0.001, 0.002, 0.003, 0.004, 0.005, 0.006]);
+    let at3 = &table[2];
+    let (h, k) = (
+        at3["harmonic"].as_f64().unwrap(),
+        at3["klingel"].as_f64().unwrap(),
+    );
+    assert!((0.1..0.25).contains(&h) && (h - k).abs() < 0.01, "{at3}");
+    // Klingel's formula links the wavelength and λ with the document's r0 and e0.
+    let (r0, e0) = (doc["r0"].as_f64().unwrap(), doc["e0"].as_f64().unwrap());
+    let wavelength = at3["wavelength"].as_f64().unwrap();
+    let formula = 2.0 * std::f64::consts::PI * (r0 * e0 / k).sqrt();
+    assert!((wavelength / formula - 1.0).abs() < 1e-12);
+    let rows = doc["deltaR"].as_array().expect("deltaR");
+    assert_eq!(rows.len(), 281, "±7 mm in 0.05 mm steps");
+    assert_eq!(rows[0]["y"].as_f64(), Some(-0.007));
+    for name in [
+        "conicity.json",
+        "conicity.csv",
+        "delta_r.csv",
+        "conicity.svg",
+        "conicity.png",
+    ] {
+        assert!(dir.join(name).is_file(), "{name}");
+    }
+    let csv = std::fs::read_to_string(dir.join("conicity.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 7);
+    assert!(csv.starts_with("amplitude_m,harmonic,klingel,wavelength_m\n0.001,"));
+    let csv = std::fs::read_to_string(dir.join("delta_r.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 282);
+    let _ = std::fs::remove_dir_all(&dir);
+
+    let o = run(&["conicity", "--no-roll", "--amplitudes", "0.003"]);
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
+    let level = parse(&stdout(&o));
+    assert_eq!(level["roll"], Value::Bool(false));
+    assert!(level["deltaR"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|r| r["roll"] == 0.0));
+
+    let o = run(&["conicity", "--amplitudes", "0.003,0.05"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("amplitude = 0.05 is outside the allowed range (0, 0.02] [m]"),
+        "{}",
+        stderr(&o)
     );
 }

@@ -184,7 +184,7 @@ fn material() -> Material {
     }
 }
 
-/// The benchmark wheelset solved as the report's seed case (as `tests/central.rs` and
+/// The benchmark wheelset solved as the report's central case (as `tests/central.rs` and
 /// `tests/tangential.rs` solve it).
 fn solve(
     model: NormalModel,
@@ -251,7 +251,7 @@ fn report_reproduces_the_figures_and_the_error_table() {
         );
     }
     assert!(md.contains("Errors against the exact theory") && md.contains("| 6 ANALYN |"));
-    assert!(md.contains("MBench_S1002_v3.prw"), "the seed's profiles");
+    assert!(md.contains("MBench_S1002_v3.prw"), "the benchmark files");
 
     let table = read_table(&out.join("errors.csv"));
     let key = |case: &str, model: &str, t: &str, planar: &str, q: &str| {
@@ -276,22 +276,23 @@ fn report_reproduces_the_figures_and_the_error_table() {
         let patches: Vec<_> = right.shown_patches().copied().collect();
         let area_mm2 = patches.iter().map(|p| p.area).sum::<f64>() * 1e6;
         let pmax_mpa = patches.iter().map(|p| p.pmax).fold(0.0, f64::max) * 1e-6;
-        let (value, reference, error) = key("central", label, "-", "-", "area");
-        assert_printed(&value, area_mm2, &format!("{label} area"));
-        assert_printed(&reference, summary["area_mm2"], "reference area");
-        assert_printed(
-            &error,
-            100.0 * (area_mm2 / summary["area_mm2"] - 1.0),
-            &format!("{label} area error"),
-        );
-        let (value, reference, error) = key("central", label, "-", "-", "pmax");
-        assert_printed(&value, pmax_mpa, &format!("{label} pmax"));
-        assert_printed(&reference, summary["pmax_MPa"], "reference pmax");
-        assert_printed(
-            &error,
-            100.0 * (pmax_mpa / summary["pmax_MPa"] - 1.0),
-            &format!("{label} pmax error"),
-        );
+        for (quantity, model_value, column) in [
+            ("area", area_mm2, "area_mm2"),
+            ("pmax", pmax_mpa, "pmax_MPa"),
+        ] {
+            let (value, reference, error) = key("central", label, "-", "-", quantity);
+            assert_printed(&value, model_value, &format!("{label} {quantity}"));
+            assert_printed(
+                &reference,
+                summary[column],
+                &format!("reference {quantity}"),
+            );
+            assert_printed(
+                &error,
+                100.0 * (model_value / summary[column] - 1.0),
+                &format!("{label} {quantity} error"),
+            );
+        }
     }
     // ANALYN's pure spin 0.052 rad/m, planar, tangentialModel 1 (the case's).
     let spin = Creepages::Prescribed {

@@ -400,6 +400,52 @@ impl Instance {
             .collect()
     }
 
+    // -- directional derivatives
+
+    /// `fmi2GetDirectionalDerivative` of the variables `unknowns` along the seed `seed` of the
+    /// variables `knowns`, into `out` (one slot per unknown); `fmi2Error` without a call when
+    /// the lengths do not match. Allocates nothing.
+    pub fn directional_derivative_vr(
+        &self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        seed: &[f64],
+        out: &mut [f64],
+    ) -> Status {
+        if knowns.len() != seed.len() || unknowns.len() != out.len() {
+            return Status::Error;
+        }
+        // SAFETY: each array holds the count passed with it.
+        Status::from(unsafe {
+            (self.functions().fmi2GetDirectionalDerivative)(
+                self.component,
+                unknowns.as_ptr(),
+                unknowns.len(),
+                knowns.as_ptr(),
+                knowns.len(),
+                seed.as_ptr(),
+                out.as_mut_ptr(),
+            )
+        })
+    }
+
+    /// [`Instance::directional_derivative_vr`] by variable names, the seed given per known
+    /// variable as (name, seed value): the status and the derivatives (NaN unless the FMU wrote
+    /// them).
+    #[track_caller]
+    pub fn directional_derivative(
+        &self,
+        unknowns: &[&str],
+        knowns: &[(&str, f64)],
+    ) -> (Status, Vec<f64>) {
+        let unknown: Vec<u32> = unknowns.iter().map(|name| self.vr(name)).collect();
+        let known: Vec<u32> = knowns.iter().map(|(name, _)| self.vr(name)).collect();
+        let seed: Vec<f64> = knowns.iter().map(|&(_, x)| x).collect();
+        let mut out = vec![f64::NAN; unknowns.len()];
+        let s = self.directional_derivative_vr(&unknown, &known, &seed, &mut out);
+        (s, out)
+    }
+
     // -- FMU states
 
     /// `fmi2GetFMUstate`: a new state of this instance.

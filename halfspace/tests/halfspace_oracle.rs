@@ -4,10 +4,10 @@
 //! (Polonsky–Keer conjugate gradients, Boussinesq influence coefficients). Here it is applied to
 //! the undeformed gap of a patch as the strips see it — h(x, s) = f(s) + A(s)(x − x_c(s))² on the
 //! patch's contact plane, 0.2 × 0.2 mm elements like the reference — at the patch's normal force.
-//! First the oracle itself is checked against CONTACT on the seed's central case; then ANALYN
-//! (the best fast model, docs/validation.md) is checked against the oracle over the lateral
-//! shifts −1…+4 mm (tread) within ±10 % in area and ±15 % in pmax, and at the flange-root shifts
-//! +5 and +6 mm with area error under 18 % and pmax error under 50 %.
+//! First the oracle itself is checked against CONTACT on the central case (tests/data/README.md);
+//! then ANALYN (the best fast model, docs/validation.md) is checked against the oracle over the
+//! lateral shifts −1…+4 mm (tread) within ±10 % in area and ±15 % in pmax, and at the flange-root
+//! shifts +5 and +6 mm with area error under 18 % and pmax error under 50 %.
 //!
 //! Set-up as the root crate's `tests/central.rs` (benchmark profiles, E = 210 GPa, ν = 0.28,
 //! 78.5 kN per wheel, no yaw, right wheel). Known limit of the oracle: one contact plane per wheel

@@ -724,33 +724,54 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
 const _: fmi2DeSerializeFMUstateTYPE = Some(fmi2DeSerializeFMUstate);
 
 // ---------------------------------------------------------------------------------------------
-// Unsupported: directional derivatives, input/output derivatives, asynchronous steps
+// Directional derivatives
+
+/// # Safety
+/// FMI 2.0 host contract: `vUnknown_ref` and `dvUnknown` hold `nUnknown` elements, `vKnown_ref`
+/// and `dvKnown` hold `nKnown`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
+    c: fmi2Component,
+    vUnknown_ref: *const fmi2ValueReference,
+    nUnknown: usize,
+    vKnown_ref: *const fmi2ValueReference,
+    nKnown: usize,
+    dvKnown: *const fmi2Real,
+    dvUnknown: *mut fmi2Real,
+) -> fmi2Status {
+    const F: &str = "fmi2GetDirectionalDerivative";
+    with_instance(c, F, mask::DIRECTIONAL_DERIVATIVE, |inst| {
+        if null_args(
+            inst,
+            F,
+            nUnknown,
+            &[vUnknown_ref.is_null(), dvUnknown.is_null()],
+        ) || null_args(inst, F, nKnown, &[vKnown_ref.is_null(), dvKnown.is_null()])
+        {
+            return ERROR;
+        }
+        // SAFETY: checked non-null, the host owns the elements.
+        let (unknowns, knowns, seed, out) = unsafe {
+            (
+                slice(vUnknown_ref, nUnknown),
+                slice(vKnown_ref, nKnown),
+                slice(dvKnown, nKnown),
+                slice_mut(dvUnknown, nUnknown),
+            )
+        };
+        inst.directional_derivative(unknowns, knowns, seed, out)
+    })
+}
+const _: fmi2GetDirectionalDerivativeTYPE = Some(fmi2GetDirectionalDerivative);
+
+// ---------------------------------------------------------------------------------------------
+// Unsupported: input/output derivatives, asynchronous steps
 
 fn unsupported(c: fmi2Component, function: &str, why: &str) -> fmi2Status {
     with_instance(c, function, mask::UNSUPPORTED, |inst| {
         inst.error(&format!("{function} is not supported: {why}"))
     })
 }
-
-/// # Safety
-/// FMI 2.0 host contract.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
-    c: fmi2Component,
-    _vUnknown_ref: *const fmi2ValueReference,
-    _nUnknown: usize,
-    _vKnown_ref: *const fmi2ValueReference,
-    _nKnown: usize,
-    _dvKnown: *const fmi2Real,
-    _dvUnknown: *mut fmi2Real,
-) -> fmi2Status {
-    unsupported(
-        c,
-        "fmi2GetDirectionalDerivative",
-        "providesDirectionalDerivative=\"false\"",
-    )
-}
-const _: fmi2GetDirectionalDerivativeTYPE = Some(fmi2GetDirectionalDerivative);
 
 /// # Safety
 /// FMI 2.0 host contract.

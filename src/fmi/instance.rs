@@ -68,6 +68,9 @@ pub mod mask {
     pub const SET: u8 = Instantiated as u8 | InitializationMode as u8 | StepComplete as u8;
     pub const FMU_STATE: u8 = ANY_BUT_FATAL;
     pub const DO_STEP: u8 = StepComplete as u8;
+    /// At the inputs of initialization or between steps (the model's history is that of the
+    /// last step).
+    pub const DIRECTIONAL_DERIVATIVE: u8 = InitializationMode as u8 | StepComplete as u8;
     pub const STATUS: u8 = StepComplete as u8 | StepFailed as u8 | Terminated as u8;
     pub const UNSUPPORTED: u8 = ANY_BUT_FATAL;
 }
@@ -146,7 +149,8 @@ fn checksum(bytes: &[u8]) -> u64 {
     })
 }
 
-/// Tolerance for comparing communication points (fmi-notes.md §3, §10).
+/// Tolerance for comparing communication points (docs/integration.md, "Communication points and
+/// step sizes").
 const TIME_TOLERANCE: f64 = 1e-9;
 
 /// One instance of a model.
@@ -169,6 +173,8 @@ pub struct Instance {
     last_successful_time: f64,
     /// Strings handed out by the last `fmi2GetString`, valid until the next call.
     string_cache: Vec<CString>,
+    /// Scratch values of directional derivatives (made at the first call).
+    probe_values: Option<Values>,
 }
 
 impl Instance {
@@ -193,6 +199,7 @@ impl Instance {
             terminated_by_model: false,
             last_successful_time: 0.0,
             string_cache: Vec::new(),
+            probe_values: None,
         }
     }
 
@@ -398,6 +405,73 @@ impl Instance {
             self.dirty = true;
         }
         OK
+    }
+
+    /// `fmi2GetDirectionalDerivative`: `out[j]` = Σ_i ∂unknowns[j]/∂knowns[i] · seed[i] at the
+    /// current inputs, by [`super::derivative`]. Unknowns must be Real outputs, knowns continuous
+    /// Real inputs. Neither the values nor the model's history change: the next step gives the
+    /// same outputs as without this call.
+    pub fn directional_derivative(
+        &mut self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        seed: &[f64],
+        out: &mut [f64],
+    ) -> fmi2Status {
+        const F: &str = "fmi2GetDirectionalDerivative";
+        if !self.info.provides_directional_derivative {
+            return self.error(&format!(
+                "{F} is not supported by {} (providesDirectionalDerivative=\"false\")",
+                self.info.model_identifier
+            ));
+        }
+        for &vr in unknowns {
+            match self.variable(vr, VarType::Real) {
+                Ok(v) if v.causality == Causality::Output => {}
+                Ok(v) => return self.error(&format!("{F}: unknown {} is not an output", v.name)),
+                Err(m) => return self.error(&format!("{F}: {m}")),
+            }
+        }
+        for (&vr, &x) in knowns.iter().zip(seed) {
+            match self.variable(vr, VarType::Real) {
+                Ok(v)
+                    if v.causality == Causality::Input
+                        && v.variability == Variability::Continuous =>
+                {
+                    if !x.is_finite() {
+                        return self.error(&format!("{F}: seed of {} = {x} is not finite", v.name));
+                    }
+                }
+                Ok(v) => {
+                    return self.error(&format!("{F}: known {} is not a continuous input", v.name))
+                }
+                Err(m) => return self.error(&format!("{F}: {m}")),
+            }
+        }
+        if self.needs_initialize {
+            if let Err(e) = self.model.initialize(&self.values) {
+                return self.model_failure(e, F);
+            }
+            self.needs_initialize = false;
+            self.dirty = true;
+        }
+        let scratch = self.probe_values.get_or_insert_with(|| self.values.clone());
+        let variables = self.info.variables;
+        let result = super::derivative::directional_derivative(
+            self.model.as_mut(),
+            &self.values,
+            scratch,
+            knowns
+                .iter()
+                .zip(seed)
+                .map(|(&vr, &x)| (&variables[vr as usize], x)),
+            unknowns.iter().map(|&vr| &variables[vr as usize]),
+            out,
+        );
+        match result {
+            Ok(()) => OK,
+            Err(e) => self.model_failure(e, F),
+        }
     }
 
     pub fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> fmi2Status {

@@ -60,6 +60,25 @@ pub trait Model: Send {
     /// message of an [`Evaluation::Warning`]).
     fn evaluate(&mut self, values: &mut Values, time: f64) -> Result<Evaluation, ModelError>;
 
+    /// Evaluates the outputs at `values` for a directional derivative ([`crate::fmi::derivative`]),
+    /// leaving the model's history (warm starts) as the last [`Model::evaluate`] left it: the next
+    /// `evaluate` gives bit for bit what it would have given without this call. Must not allocate
+    /// (except for an error's message). Models that do not provide directional derivatives keep
+    /// this default.
+    fn probe(&mut self, _values: &mut Values) -> Result<(), ModelError> {
+        Err(ModelError::Error(
+            "the model provides no directional derivatives".into(),
+        ))
+    }
+
+    /// The difference step of the continuous input `var` at `values` for [`Model::probe`]-based
+    /// derivatives, in the input's unit: small enough that the outputs are linear over it, large
+    /// enough that the solver's tolerances do not show. The default, 1e−6 of the value's
+    /// magnitude (at least 1e−6 of its unit), suits inputs without a physical scale of their own.
+    fn difference_step(&self, values: &Values, var: &VarInfo) -> f64 {
+        super::derivative::default_step(values, var)
+    }
+
     /// Appends internal state that is not a variable (warm starts) to an FMU state.
     fn save_state(&self, _out: &mut Vec<u8>) {}
 
@@ -81,6 +100,8 @@ pub struct ModelInfo {
     pub variables: &'static [VarInfo],
     pub counts: Counts,
     pub default_experiment: DefaultExperiment,
+    /// `providesDirectionalDerivative`: the model implements [`Model::probe`].
+    pub provides_directional_derivative: bool,
     pub create: fn(&InstanceContext) -> Box<dyn Model>,
 }
 

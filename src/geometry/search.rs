@@ -1,8 +1,8 @@
 //! Rigid contact search between one wheel and its rail for a wheelset pose.
 //!
-//! Method (physics.md §1, §5.1): in the side frame (see [`crate::geometry::track`]) the wheelset pose is a
-//! lateral shift, a yaw angle ψ and a roll angle θ. For each lateral coordinate W across the rail
-//! (measured from the wheelset centre along the wheelset's own lateral axis):
+//! Method (docs/theory.md §7.6): in the side frame (see [`crate::geometry::track`]) the wheelset
+//! pose is a lateral shift, a yaw angle ψ and a roll angle θ. For each lateral coordinate W across
+//! the rail (measured from the wheelset centre along the wheelset's own lateral axis):
 //!
 //! * **roll** is applied by rotating the rail curve by −θ about the wheelset centre into the
 //!   wheelset frame (a rail is a 2-D curve extruded along x, so the rotated rail is again a curve);
@@ -28,7 +28,7 @@
 //! towards the gauge side, i.e. towards the flange — the same sign on both wheels), rolling radius,
 //! rail and wheel profile coordinates, and the relative curvatures
 //! A = cos γ/(2r) (Meusnier, straight rail) and B = (κ_rail − κ_wheel)/2 with
-//! κ = z''/(1 + z'²)^{3/2}, floored at `b_min` (CONTACT's floor 1e−4 1/mm, physics.md §5.10).
+//! κ = z''/(1 + z'²)^{3/2}, floored at `b_min` (CONTACT's floor 1e−4 1/mm, docs/theory.md §5.9).
 //!
 //! Known limits: the gap is measured vertically in the wheelset frame (δ_normal = δ_vertical·cos γ);
 //! B ignores the small change of lateral curvature by yaw; straight track.

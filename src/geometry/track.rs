@@ -1,4 +1,4 @@
-//! Track and wheelset set-up: where the rails and the wheels sit (physics.md §8.3).
+//! Track and wheelset set-up: where the rails and the wheels sit (docs/theory.md §7.5).
 //!
 //! Standard set-up: gauge 1435 mm measured 14 mm below the top of the rails, rail inclination
 //! 1:40 towards the track centre, flange-back (back-to-back) distance 1360 mm with the flange

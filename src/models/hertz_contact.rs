@@ -4,7 +4,7 @@
 
 use super::{fastsim_settings, set_output};
 use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
-use crate::fmi::variables::Values;
+use crate::fmi::variables::{RealVar, Values, VarInfo};
 use crate::material::Material;
 use crate::point_contact::{PointContact, PointContactInput};
 use crate::tangential::fastsim::Creepage;
@@ -22,6 +22,7 @@ pub static INFO: ModelInfo = ModelInfo {
     variables: &generated::VARIABLES,
     counts: generated::COUNTS,
     default_experiment: generated::DEFAULT_EXPERIMENT,
+    provides_directional_derivative: generated::PROVIDES_DIRECTIONAL_DERIVATIVE,
     create,
 };
 
@@ -91,5 +92,21 @@ impl Model for HertzContact {
             set_output(values, v, x)?;
         }
         Ok(Evaluation::Ok)
+    }
+
+    /// The point contact has no history: a probe is an evaluation.
+    fn probe(&mut self, values: &mut Values) -> Result<(), ModelError> {
+        self.evaluate(values, 0.0).map(|_| ())
+    }
+
+    /// 1e−6 of the curvatures A, B (they span 1e−3 … 1e5 1/m); 1e−4 1/m of the spin (φ·a ≈ 6e−7
+    /// on a 6 mm patch, like the creepages' 1e−6); the default for the others (1e−6 of the
+    /// creepages ξ, η, of N and V above 1).
+    fn difference_step(&self, values: &Values, v: &VarInfo) -> f64 {
+        match RealVar(v.slot) {
+            var::A | var::B => 1e-6 * values.reals[v.slot],
+            var::phi => 1e-4,
+            _ => crate::fmi::derivative::default_step(values, v),
+        }
     }
 }

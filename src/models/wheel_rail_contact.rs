@@ -5,7 +5,7 @@
 
 use super::{fastsim_settings, set_output};
 use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
-use crate::fmi::variables::{IntegerVar, RealVar, Values};
+use crate::fmi::variables::{IntegerVar, RealVar, Values, VarInfo};
 use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::profile::{Profile, ProfileKind};
 use crate::geometry::track::TrackSetup;
@@ -16,7 +16,7 @@ use crate::tangential::patch::TangentialModel;
 use crate::wheelset::validity::validity;
 use crate::wheelset::{
     Creepages, SideResult, Slot, Vertical, WarmStart, Wheelset, WheelsetError, WheelsetInput,
-    WheelsetResult, WheelsetSettings, MAX_PATCHES,
+    WheelsetResult, WheelsetSettings, MAX_PATCHES, V_MIN,
 };
 use std::path::{Path, PathBuf};
 
@@ -33,6 +33,7 @@ pub static INFO: ModelInfo = ModelInfo {
     variables: &generated::VARIABLES,
     counts: generated::COUNTS,
     default_experiment: generated::DEFAULT_EXPERIMENT,
+    provides_directional_derivative: generated::PROVIDES_DIRECTIONAL_DERIVATIVE,
     create,
 };
 
@@ -41,6 +42,7 @@ fn create(context: &InstanceContext) -> Box<dyn Model> {
         resource_dir: context.resource_dir.clone(),
         solver: None,
         result: WheelsetResult::default(),
+        probe_result: WheelsetResult::default(),
     })
 }
 
@@ -48,6 +50,8 @@ struct WheelRailContact {
     resource_dir: Option<PathBuf>,
     solver: Option<Solver>,
     result: WheelsetResult,
+    /// The result of the last [`Model::probe`] (directional derivatives).
+    probe_result: WheelsetResult,
 }
 
 struct Solver {
@@ -56,8 +60,53 @@ struct Solver {
     creepage_prescribed: bool,
 }
 
+impl Solver {
+    /// Solves the wheelset at the inputs in `values` into `result` and writes the outputs.
+    fn solve(
+        &mut self,
+        values: &mut Values,
+        result: &mut WheelsetResult,
+    ) -> Result<WheelsetInput, ModelError> {
+        let input = input(values, self.vertical_by_position, self.creepage_prescribed);
+        match self.wheelset.solve(&input, result) {
+            Ok(()) => {}
+            Err(WheelsetError::Input(e)) => return Err(e.into()),
+            Err(e @ (WheelsetError::NoContact { .. } | WheelsetError::Unbalanced { .. })) => {
+                return Err(ModelError::Discard(e.to_string()))
+            }
+        }
+        write_side(values, false, &result.left)?;
+        write_side(values, true, &result.right)?;
+        Ok(input)
+    }
+}
+
+/// Creepage change of one difference step of the kinematic inputs (`difference_step`) [-]: deep
+/// in the linear part of the creep curves (which bend at creepages of ~1e−3 on a tread), where
+/// the creep forces change by ~10 N per step — 1000 times the tolerance of the load balance's
+/// creep update (1e−7 of the wheel load).
+const CREEPAGE_STEP: f64 = 1e-6;
+
+/// Difference step of the lateral shift and the roll and yaw angles [m, rad]: 1/50 of the contact
+/// search's sampling step, so that the reference points move smoothly over it, and a change of the
+/// rolling radius (λ ≈ 0.2) of 2 µm — a longitudinal creepage of ~4e−6.
+const POSE_STEP: f64 = 1e-5;
+
+/// Difference step of the prescribed vertical position [m]: 1e−3 of a tread contact's approach
+/// (~0.1 mm).
+const HEIGHT_STEP: f64 = 1e-7;
+
+/// Difference step of the wheel loads, relative (at least of 1 kN) [-]: 1000 times the load
+/// balance's creep tolerance (1e−7 of the load), whose residue would otherwise show in ∂Fz/∂Q
+/// (−1 in principle: 0.5 % off at a step of 1e−5 on ANALYN, 0.02 % at 1e−4).
+const LOAD_STEP: f64 = 1e-4;
+
+/// Difference step of the prescribed spin creepage [1/m]: the spin's counterpart of
+/// [`CREEPAGE_STEP`], φ·a ≈ 6e−7 over a patch's half-length a ≈ 6 mm.
+const SPIN_STEP: f64 = 1e-4;
+
 /// Output handles of one patch, in the order of [`patch_values`].
-type PatchVars = [RealVar; 18];
+type PatchVars = [RealVar; 21];
 
 fn patch_vars(right: bool, k: usize) -> PatchVars {
     use var::*;
@@ -72,6 +121,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p1_length,
             left_p1_width,
             left_p1_yRail,
+            left_p1_xPos,
+            left_p1_yPos,
+            left_p1_zPos,
             left_p1_contactAngle,
             left_p1_rollingRadius,
             left_p1_penetration,
@@ -92,6 +144,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p2_length,
             left_p2_width,
             left_p2_yRail,
+            left_p2_xPos,
+            left_p2_yPos,
+            left_p2_zPos,
             left_p2_contactAngle,
             left_p2_rollingRadius,
             left_p2_penetration,
@@ -112,6 +167,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p3_length,
             left_p3_width,
             left_p3_yRail,
+            left_p3_xPos,
+            left_p3_yPos,
+            left_p3_zPos,
             left_p3_contactAngle,
             left_p3_rollingRadius,
             left_p3_penetration,
@@ -134,6 +192,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p1_length,
             right_p1_width,
             right_p1_yRail,
+            right_p1_xPos,
+            right_p1_yPos,
+            right_p1_zPos,
             right_p1_contactAngle,
             right_p1_rollingRadius,
             right_p1_penetration,
@@ -154,6 +215,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p2_length,
             right_p2_width,
             right_p2_yRail,
+            right_p2_xPos,
+            right_p2_yPos,
+            right_p2_zPos,
             right_p2_contactAngle,
             right_p2_rollingRadius,
             right_p2_penetration,
@@ -174,6 +238,9 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p3_length,
             right_p3_width,
             right_p3_yRail,
+            right_p3_xPos,
+            right_p3_yPos,
+            right_p3_zPos,
             right_p3_contactAngle,
             right_p3_rollingRadius,
             right_p3_penetration,
@@ -192,13 +259,23 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
     }
 }
 
-/// Totals of one side: nPatches, then Fx, Fy, Fz, z.
-fn side_vars(right: bool) -> (IntegerVar, [RealVar; 4]) {
+/// Totals of one side: nPatches, then Fx, Fy, Fz, z, Mx, My, Mz, YQ.
+fn side_vars(right: bool) -> (IntegerVar, [RealVar; 8]) {
     use var::*;
     if right {
-        (right_nPatches, [right_Fx, right_Fy, right_Fz, right_z])
+        (
+            right_nPatches,
+            [
+                right_Fx, right_Fy, right_Fz, right_z, right_Mx, right_My, right_Mz, right_YQ,
+            ],
+        )
     } else {
-        (left_nPatches, [left_Fx, left_Fy, left_Fz, left_z])
+        (
+            left_nPatches,
+            [
+                left_Fx, left_Fy, left_Fz, left_z, left_Mx, left_My, left_Mz, left_YQ,
+            ],
+        )
     }
 }
 
@@ -251,6 +328,29 @@ fn load_profile(
         );
     }
     Err(fail(&text))
+}
+
+/// The wheel and rail profiles the parameters `wheelProfile`, `railProfile` and
+/// `profileSmoothing` name (relative paths looked up in `resources` first, then in the working
+/// directory).
+pub fn profiles(
+    values: &Values,
+    resources: Option<&Path>,
+) -> Result<(Profile, Profile), ModelError> {
+    let smoothing = values.real(var::profileSmoothing);
+    let wheel = load_profile(
+        values.string(var::wheelProfile),
+        ProfileKind::Wheel,
+        smoothing,
+        resources,
+    )?;
+    let rail = load_profile(
+        values.string(var::railProfile),
+        ProfileKind::Rail,
+        smoothing,
+        resources,
+    )?;
+    Ok((wheel, rail))
 }
 
 /// The wheelset settings the parameters describe.
@@ -363,7 +463,9 @@ pub fn input(
 fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(), ModelError> {
     let (n, totals) = side_vars(right);
     values.set_integer(n, side.n_patches as i32);
-    let total_values = [side.force[0], side.force[1], side.force[2], side.z];
+    let [fx, fy, fz] = side.force;
+    let [mx, my, mz] = side.moment;
+    let total_values = [fx, fy, fz, side.z, mx, my, mz, side.derailment_quotient];
     for (v, x) in totals.into_iter().zip(total_values) {
         set_output(values, v, x)?;
     }
@@ -379,6 +481,9 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
             p.length,
             p.width,
             p.y_rail,
+            p.position[0],
+            p.position[1],
+            p.position[2],
             p.contact_angle,
             p.rolling_radius,
             p.penetration,
@@ -398,20 +503,7 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
 
 impl Model for WheelRailContact {
     fn initialize(&mut self, values: &Values) -> Result<(), ModelError> {
-        let smoothing = values.real(var::profileSmoothing);
-        let resources = self.resource_dir.as_deref();
-        let wheel = load_profile(
-            values.string(var::wheelProfile),
-            ProfileKind::Wheel,
-            smoothing,
-            resources,
-        )?;
-        let rail = load_profile(
-            values.string(var::railProfile),
-            ProfileKind::Rail,
-            smoothing,
-            resources,
-        )?;
+        let (wheel, rail) = profiles(values, self.resource_dir.as_deref())?;
         let wheelset = Wheelset::new(&wheel, &rail, settings(values)?)
             .map_err(|e| ModelError::Error(e.to_string()))?;
         self.solver = Some(Solver {
@@ -423,28 +515,41 @@ impl Model for WheelRailContact {
     }
 
     fn evaluate(&mut self, values: &mut Values, _time: f64) -> Result<Evaluation, ModelError> {
-        let solver = self
-            .solver
-            .as_mut()
-            .ok_or_else(|| ModelError::Error("model used before initialization".into()))?;
-        let input = input(
-            values,
-            solver.vertical_by_position,
-            solver.creepage_prescribed,
-        );
-        match solver.wheelset.solve(&input, &mut self.result) {
-            Ok(()) => {}
-            Err(WheelsetError::Input(e)) => return Err(e.into()),
-            Err(e @ (WheelsetError::NoContact { .. } | WheelsetError::Unbalanced { .. })) => {
-                return Err(ModelError::Discard(e.to_string()))
-            }
-        }
-        write_side(values, false, &self.result.left)?;
-        write_side(values, true, &self.result.right)?;
+        let solver = self.solver.as_mut().ok_or_else(not_initialized)?;
+        let input = solver.solve(values, &mut self.result)?;
         Ok(match validity(&self.result) {
             None => Evaluation::Ok,
             Some(implausible) => Evaluation::Warning(implausible.message(&input.vertical)),
         })
+    }
+
+    /// The outputs at `values` from the warm starts and output slots of the last step, which are
+    /// restored afterwards (a patch keeps the slot it has in the last step's outputs).
+    fn probe(&mut self, values: &mut Values) -> Result<(), ModelError> {
+        let solver = self.solver.as_mut().ok_or_else(not_initialized)?;
+        let (warm, slots) = (solver.wheelset.warm_start(), solver.wheelset.slots());
+        let solved = solver.solve(values, &mut self.probe_result);
+        solver.wheelset.set_warm_start(warm);
+        solver.wheelset.set_slots(slots);
+        solved.map(|_| ())
+    }
+
+    /// Steps scaled to each input's physics: a creepage change of [`CREEPAGE_STEP`] for the
+    /// velocities (vx, vy: × V; yawRate: × V / 1 m, the lever of a wheel; omega: × V / r₀) and the
+    /// prescribed creepages, [`SPIN_STEP`] for the spin, [`POSE_STEP`] for y, yaw and roll,
+    /// [`HEIGHT_STEP`] for z, [`LOAD_STEP`] of the loads; V = max(|vx|, 0.01 m/s).
+    fn difference_step(&self, values: &Values, v: &VarInfo) -> f64 {
+        let speed = values.real(var::vx).abs().max(V_MIN);
+        match RealVar(v.slot) {
+            var::y | var::yaw | var::roll => POSE_STEP,
+            var::z => HEIGHT_STEP,
+            var::Qleft | var::Qright => LOAD_STEP * values.reals[v.slot].abs().max(1e3),
+            var::vx | var::vy | var::yawRate => CREEPAGE_STEP * speed,
+            var::omega => CREEPAGE_STEP * speed / values.real(var::wheelRadius),
+            var::xi | var::eta => CREEPAGE_STEP,
+            var::phi => SPIN_STEP,
+            _ => crate::fmi::derivative::default_step(values, v),
+        }
     }
 
     /// The solver's history (the load iteration's warm starts, `wheelset::WarmStart`, and the
@@ -476,6 +581,10 @@ impl Model for WheelRailContact {
         solver.wheelset.set_slots(slots);
         Ok(())
     }
+}
+
+fn not_initialized() -> ModelError {
+    ModelError::Error("model used before initialization".into())
 }
 
 /// Version of the solver-history layout in FMU states (5: warm start with one strip ratio, and

@@ -4,12 +4,12 @@
 //! in vehicle dynamics simulation", Vehicle System Dynamics 52 (2014) (ANALYN); compared
 //! with the other non-elliptic models in M. Sh. Sichani, R. Enblom, M. Berg, "Comparison of
 //! non-elliptic contact models: towards fast and accurate modelling of wheel–rail contact",
-//! Wear 314 (2014) 111–117. The equations follow physics.md §5.8 (**A1**, the form of CONTACT's
-//! "modified ANALYN"), with B handled as in §5.10.
+//! Wear 314 (2014) 111–117. The equations follow docs/theory.md §5.7 (**A1**, the form of CONTACT's
+//! "modified ANALYN"), with B handled as in §5.9.
 //!
 //! # Equations (A1), per strip i with centre s_i
 //!
-//! * B_i ← max(B_i, B_min) (replacement floor, §5.10; CONTACT clamps at 1e−4 1/mm);
+//! * B_i ← max(B_i, B_min) (replacement floor, §5.9; CONTACT clamps at 1e−4 1/mm);
 //! * from the Hertz shape of (A_i, B_i) ([`HertzShapeTable`]): 1 + α_i = 1/ε_x, 1 + β_i = 1/ε_y
 //!   (H6: A a² = ε_x δ, B b² = ε_y δ);
 //! * δ_loc,i = δ − (1 + β_i) f_i, with f_i the gap of the strip's locus ([`StripGeometry::f`],
@@ -21,9 +21,9 @@
 //! Hertz gap f = B s², A constant: δ_loc = δ(1 − s²/b²) with b² = ε_y δ/B, so
 //! x_l² = a²(1 − s²/b²) and p_max = p0 √(1 − s²/b²) — the Hertz pressure, strip by strip (tested
 //! to the table's 1e−7). Since x_l² = ε_x δ_loc/A, the peak equals the A-based local Hertz peak of
-//! an ellipse with x-semi-axis x_l (physics.md §2.4), the same rule as STRIPES' S5.
+//! an ellipse with x-semi-axis x_l (docs/theory.md §2.4), the same rule as STRIPES' S5.
 //!
-//! # Choices (\[U\] items of §5.8)
+//! # Choices (ours, docs/theory.md §5.7)
 //!
 //! * Curvatures: A_i and B_i are taken from the strip geometry as given (its builder's estimate);
 //!   the original paper's curvature estimation is not reproduced. No iteration on δ_loc: A1 is
@@ -49,7 +49,7 @@ use crate::normal::shape::HertzShapeTable;
 use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
 
-/// ANALYN (A1, physics.md §5.8). See the module documentation.
+/// ANALYN (A1, docs/theory.md §5.7). See the module documentation.
 #[derive(Debug, Clone, Default)]
 pub struct Analyn {
     /// Strips prepared (≤ [`MAX_STRIPS`]).
@@ -99,7 +99,7 @@ impl StripModel for Analyn {
         self.n = n;
         for i in 0..n {
             let raw_b = geom.curv_b[i];
-            // Floor B < B_min (A1, §5.10); a non-finite B (input error) goes to the floor too.
+            // Floor B < B_min (A1, §5.9); a non-finite B (input error) goes to the floor too.
             let b = if raw_b > b_min && raw_b.is_finite() {
                 raw_b
             } else {

@@ -2,7 +2,7 @@
 //!
 //! Papers: H. Hertz (1882), "Über die Berührung fester elastischer Körper"; K.L. Johnson,
 //! *Contact Mechanics* (1985) §4.2 and Table 4.1 (m, n, r). Equations as labelled in
-//! physics.md §2:
+//! docs/theory.md §2:
 //!
 //! * **H1** axis ratio g = b'/a' from B'/A' = (E(e)/g² − K(e)) / (K(e) − E(e)), e² = 1 − g², solved
 //!   by a bracketed Illinois (modified regula falsi) iteration on ln(B'/A') versus ln g, started from
@@ -15,16 +15,16 @@
 //! * **H6** shape factors ε_x = A a²/δ, ε_y = B b²/δ, ε_x + ε_y = 1;
 //! * **H7** m, n, r coefficients (`mnr_coefficients`).
 //!
-//! The elliptic integrals come from the AGM (`crate::numeric::elliptic`, physics.md §2.6), with K − E free
-//! of cancellation so that H1 and H6 stay accurate near the circle.
+//! The elliptic integrals come from the AGM (`crate::numeric::elliptic`, docs/theory.md §9.1), with
+//! K − E free of cancellation so that H1 and H6 stay accurate near the circle.
 //!
 //! Conventions: A is the relative curvature in the rolling direction x, B the lateral one [1/m];
 //! the semi-axis `a` lies along x and `b` along y, whichever is larger. E* = E/(2(1 − ν²)) for two
 //! bodies of the same material.
 //!
 //! Known limits: A, B > 0 are required (conformal or concave-lateral contact is not Hertzian;
-//! physics.md §5.10 handles it elsewhere). H1 is solved for B'/A' from 1 up to about 1e12 (g down to
-//! ~1e−7); the acceptance range is 1…1e6. Half-space, frictionless, small-strain theory.
+//! docs/theory.md §5.9 handles it elsewhere). H1 is solved for B'/A' from 1 up to about 1e12 (g
+//! down to ~1e−7); the acceptance range is 1…1e6. Half-space, frictionless, small-strain theory.
 
 use crate::error::{require_non_negative, require_positive, InputError};
 use crate::numeric::elliptic::{complete_elliptic_from_complementary, CompleteElliptic};
@@ -32,7 +32,7 @@ use crate::numeric::roots::Illinois;
 use std::f64::consts::PI;
 
 /// Contact modulus E* = E/(2(1 − ν²)) [Pa] of two bodies with the same Young's modulus `e` [Pa] and
-/// Poisson ratio `nu` [-] (physics.md §2.1).
+/// Poisson ratio `nu` [-] (docs/theory.md §2.1).
 pub fn contact_modulus(e: f64, nu: f64) -> f64 {
     e / (2.0 * (1.0 - nu * nu))
 }
@@ -105,7 +105,7 @@ fn curvature_ratio_of(g: f64, ell: &CompleteElliptic) -> f64 {
 
 /// Largest curvature ratio B'/A' accepted by [`solve_axis_ratio`]. Beyond ~1e12 the ellipse is
 /// a line contact for every practical purpose (g < 1e−7) and the H1 bracket search would need
-/// more expansion steps; the brief's acceptance range ends at 1e6.
+/// more expansion steps; the tested range ends at 1e6.
 pub const MAX_CURVATURE_RATIO: f64 = 1e12;
 
 /// Iteration cap of the Illinois solve. Convergence is superlinear (about 8–12 steps from the
@@ -140,7 +140,7 @@ pub fn solve_axis_ratio(curvature_ratio: f64) -> Result<AxisRatio, InputError> {
     // Bracket: h(t_hi) ≤ 0 ≤ h(t_lo), t_lo < t_hi ≤ 0. h(0) = −ln target < 0.
     let mut t_hi = 0.0_f64;
     let mut h_hi = -ln_target;
-    // Greenwood's start 1/g ≈ (B'/A')^{2/3} (physics.md §2.2).
+    // Greenwood's start 1/g ≈ (B'/A')^{2/3} (docs/theory.md §2.2).
     let mut t_lo = -(2.0 / 3.0) * ln_target;
     let (mut h_lo, mut ell_best) = h(t_lo);
     if h_lo < 0.0 {
@@ -274,7 +274,7 @@ pub fn hertz_from_approach(
 
 /// Shape factors (ε_x, ε_y) of H6: ε_x = A a²/δ, ε_y = B b²/δ, ε_x + ε_y = 1 [-].
 ///
-/// Independent of load and material. For A ≤ B, ε_x = (K − E)/(e² K) (physics.md §2.4); ε_y is
+/// Independent of load and material. For A ≤ B, ε_x = (K − E)/(e² K) (docs/theory.md §2.4); ε_y is
 /// the complement.
 pub fn shape_factors(curv_a: f64, curv_b: f64) -> Result<(f64, f64), InputError> {
     check_curvatures(curv_a, curv_b)?;
@@ -321,7 +321,7 @@ mod tests {
 
     #[test]
     fn moduli() {
-        // E* = G/(1 − ν) (physics.md §2.1) and G = 82 GPa for oracle 1; exact up to rounding.
+        // E* = G/(1 − ν) (docs/theory.md §2.1) and G = 82 GPa for oracle 1; exact up to rounding.
         let e_star = contact_modulus(E_ORACLE1, NU_ORACLE1);
         let g = shear_modulus(E_ORACLE1, NU_ORACLE1);
         assert!(rel(g, 82e9) < 1e-15);
@@ -330,7 +330,7 @@ mod tests {
 
     #[test]
     fn oracle_contact_fastsim_example() {
-        // physics.md §2.7 oracle 1: CONTACT's printed A, B (4 digits) → a = 8.000 mm,
+        // docs/theory.md §2.7, first check: CONTACT's printed A, B (4 digits) → a = 8.000 mm,
         // b = 4.000 mm (±0.2 %), δ = 0.09267 mm, p0 = 1223.5 MPa (±0.3 %). The tolerances are
         // those of the acceptance criteria; the printed digits alone allow ~1e−4.
         let e_star = contact_modulus(E_ORACLE1, NU_ORACLE1);
@@ -346,7 +346,7 @@ mod tests {
 
     #[test]
     fn oracle_wheel_on_crown() {
-        // physics.md §2.7 oracle 2: A = 1/920 mm⁻¹, B = 1/600 mm⁻¹, E = 210 GPa, ν = 0.3,
+        // docs/theory.md §2.7, second check: A = 1/920 mm⁻¹, B = 1/600 mm⁻¹, E = 210 GPa, ν = 0.3,
         // N = 100 kN → a = 7.162, b = 5.387 mm, δ = 0.1041 mm, p0 = 1238 MPa. Tolerance: half a
         // unit in the last printed digit (≤ 5e−4 relative).
         let e_star = contact_modulus(210e9, 0.3);
@@ -404,8 +404,8 @@ mod tests {
 
     #[test]
     fn shape_factor_table() {
-        // physics.md §2.4 table (4 decimals for ε_x, 3–4 significant digits for a/b): tolerance
-        // half a unit in the last printed digit.
+        // the classical table of the shape factors (4 decimals for ε_x, 3–4 significant digits for
+        // a/b): tolerance half a unit in the last printed digit.
         let table = [
             (0.02, 12.071, 0.7445, 2.914),
             (0.05, 6.929, 0.7059, 2.400),
@@ -440,7 +440,7 @@ mod tests {
 
     #[test]
     fn mnr_table() {
-        // physics.md §2.5: θ = arccos(|B − A|/(A + B)); B'/A' = (1 + cos θ)/(1 − cos θ).
+        // docs/theory.md §2.5: θ = arccos(|B − A|/(A + B)); B'/A' = (1 + cos θ)/(1 − cos θ).
         // g printed to 5 decimals, m, n, r to 4–5 significant digits: tolerance half a unit in
         // the last printed digit (plus 1e−12 slack for exact ties).
         let table = [

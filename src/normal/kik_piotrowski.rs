@@ -5,9 +5,9 @@
 //! Dynamics 46(1–2) (2008) 27–48; W. Kik, J. Piotrowski, "A fast approximate method to calculate
 //! normal load at contact between wheel and rail and creep forces during rolling", Proc. 2nd Mini
 //! Conf. on Contact Mechanics and Wear of Wheel/Rail Systems, TU Budapest, 1996. Equations as given
-//! by physics.md §5.1 and §5.4 (KP1–KP7 [E], KP8 [R]: reconstruction, physics.md §5.4).
+//! by docs/theory.md §5.1 and §5.4 (KP1–KP7 published, KP8 our reading).
 //!
-//! # Equations (physics.md labels)
+//! # Equations (labels of docs/theory.md)
 //!
 //! On the strips of [`StripGeometry`] (centres s_i, width Δs); the first-contact point is y0 = 0
 //! (f(0) = 0, see [`StripGeometry::strip_at_origin`]), and every lateral distance in D3 is measured
@@ -24,7 +24,7 @@
 //!   N = Σ (π/2) p0_i x_l,i Δs, holds exactly) and D3 = Σ_i ∫_{strip i} I(x_l,i, y) dy. Hence the
 //!   strip peak is p0_i = πE* δ x_l,i/D3 and x_l(y0) cancels. E* is `NormalParams::e_star`,
 //!   the contact modulus 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2 (= E/(2(1 − ν²)) for identical steels,
-//!   exactly the brief's "πE* = πE/(2(1 − ν²))"): KP4 is the Boussinesq displacement of both
+//!   so πE* = πE/(2(1 − ν²))): KP4 is the Boussinesq displacement of both
 //!   half-spaces, (1 − ν1²)/(πE1) + (1 − ν2²)/(πE2) = 1/(πE*). Verified: with ε = 0.5 a circle
 //!   gives Hertz's N, a and p0 (tested, below).
 //! * **KP6** I(y) = ∫_{−c}^{c} √(c² − x²)/√(x² + y²) dx = 2√(c² + y²) [K(k) − E(k)],
@@ -42,12 +42,12 @@
 //! Φ(Y) = 2c sgn(Y) [|Y| asinh(α/|Y|) + α asinh(|Y|/α)]. The remainder R = I − S is bounded,
 //! vanishes at y = 0 and is smooth apart from a y² ln|y| term.
 //!
-//! * **Strips away from y0:** ∫ I dy = Φ(y_hi) − Φ(y_lo) + Δs R(s_i): the brief's I(s_i)Δs
-//!   plus the closed-form midpoint defect of the log term, ∫S − S(s_i)Δs (one more asinh pair per
-//!   strip). Plain midpoint sums I(s_i)Δs err by O(Δs) near y0 (I'' ≈ 2c/y² summed over the
-//!   neighbours: ≈ 0.27 c Δs), and erratically when a strip edge lies on y0 (measured with y0 on
-//!   a strip boundary, ε = 0.5 circle: N/N_H − 1 = +0.4 %, +0.8 %, +0.4 %, +0.04 % at 24, 48, 96,
-//!   192 strips); with the defect term the error is O(Δs²): +1.1e−3, 2.9e−4, 7.1e−5, 1.8e−5.
+//! * **Strips away from y0:** ∫ I dy = Φ(y_hi) − Φ(y_lo) + Δs R(s_i): the plain midpoint term
+//!   I(s_i)Δs plus the closed-form midpoint defect of the log term, ∫S − S(s_i)Δs (one more asinh
+//!   pair per strip). Plain midpoint sums I(s_i)Δs err by O(Δs) near y0 (I'' ≈ 2c/y² summed over
+//!   the neighbours: ≈ 0.27 c Δs), and erratically when a strip edge lies on y0 (measured with y0
+//!   on a strip boundary, ε = 0.5 circle: N/N_H − 1 = +0.4 %, +0.8 %, +0.4 %, +0.04 % at 24, 48,
+//!   96, 192 strips); with the defect term the error is O(Δs²): +1.1e−3, 2.9e−4, 7.1e−5, 1.8e−5.
 //! * **The strip containing y0** (s_j − Δs/2 ≤ 0 < s_j + Δs/2; in general not centred on y0) is
 //!   split at y0 and each side integrated as J(Y) = ∫_0^Y I dy = Φ(Y) + ∫_0^Y R dy
 //!   ([`kernel_integral_from_origin`]): the log-singular part analytically, the regular remainder by
@@ -56,7 +56,7 @@
 //!   R ≈ (π/2 − 4/e)c²/y + (8/(3e³) − π/16)c⁴/y³ in closed form. Relative error ≤ 2.4e−9 against
 //!   a reference quadrature for Y/c from 0.01 to 1e4 (tested), so also when a strip is much wider
 //!   than the patch is long.
-//! * **Tabulated** (speed, issue 7): R and its integral are scale-free, R(c, y) = c R̂(y/c) and
+//! * **Tabulated** (for speed): R and its integral are scale-free, R(c, y) = c R̂(y/c) and
 //!   ∫₀^Y R dy = c² Ĝ(Y/c), so the solve interpolates two one-dimensional tables in ln(y/c)
 //!   built once per instance from the direct functions above (`RemainderTable`; 1e−11 from the
 //!   reference quadrature, where the direct rule is 2.4e−9) instead of an AGM per strip and ~30
@@ -67,7 +67,7 @@
 //!   KP4 is still imposed at y0 and every strip uses the non-singular rule above. N stays
 //!   continuous (it tends to 0 as the first strip enters).
 //!
-//! # KP8 choices [U]
+//! # KP8 choices (ours)
 //!
 //! * **ρ_H, ρ_v from the curvatures at y0:** A0, B0 interpolated linearly between the strip centres
 //!   to s = 0, B0 floored at B_min = `params.b_min` (a non-positive or non-finite B_min falls back
@@ -93,13 +93,13 @@
 //!
 //! # Known limits
 //!
-//! * Not Hertz-exact with ε = 0.55 (physics.md §5.4 table, tested): N/N_H = 1.049, 1.043, 1.025
+//! * Not Hertz-exact with ε = 0.55 (docs/theory.md §5.4, tested): N/N_H = 1.049, 1.043, 1.025
 //!   and p0/p0_H = 0.954, 0.933, 0.876 at A/B = 1, 1/3, 0.1 at equal δ. With ε = 0.5 a circle
 //!   is exact.
 //! * Several disjoint runs in one geometry: KP4 is applied literally over the whole Ω (one contact
-//!   condition at y0; a far run gets pressure ∝ its half-length). physics.md §5.1 wants disjoint
-//!   supports cut into separate patches by the caller; this only keeps such input finite and
-//!   continuous.
+//!   condition at y0; a far run gets pressure ∝ its half-length). docs/theory.md §5.1 wants
+//!   disjoint supports cut into separate patches by the caller; this only keeps such input finite
+//!   and continuous.
 //! * KP8 clips the corrected patch to the strip set: with A0 > B0 (s < 1) it is wider than the
 //!   virtual one, so the strip set must cover it. For A0/B0 → ∞ (B0 at the floor) s → 0.
 //! * Strip model: x_l is constant across a strip, strips whose centre is out of contact carry
@@ -117,12 +117,12 @@ use crate::normal::strips::{first_contact_points, StripSolution, MAX_CONTACT_POI
 use crate::normal::{NormalParams, StripModel};
 use crate::numeric::elliptic::complete_elliptic_from_complementary;
 
-/// Kik–Piotrowski's virtual-penetration factor ε [-] (KP1: Piotrowski & Kik 2008 and the seed;
-/// physics.md §5.4).
+/// Kik–Piotrowski's virtual-penetration factor ε [-] (KP1: Piotrowski & Kik 2008 and Sichani et al.
+/// 2014; docs/theory.md §5.4).
 pub const KP_EPSILON: f64 = 0.55;
 
 /// Scale of the model kernel S(y) = 2c asinh(α/|y|): α = (2/e) c makes S's log singularity
-/// 2c(ln(4c/|y|) − 1) equal to I's (KP6 small-y asymptote, physics.md §5.4).
+/// 2c(ln(4c/|y|) − 1) equal to I's (KP6 small-y asymptote, docs/theory.md §5.4).
 const MODEL_KERNEL_SCALE: f64 = 2.0 / E;
 
 /// |y| ≤ this × c counts as y = 0 in the kernel remainder R = I − S, whose limit there is 0:
@@ -243,7 +243,7 @@ fn remainder_integral(c: f64, big_y: f64) -> f64 {
 }
 
 /// J(c, Y) = ∫₀^Y I(c, y) dy for Y ≥ 0 [m²]: the log-singular part in closed form (Φ) plus the
-/// regular remainder. For Y ≪ c, J ≈ 2cY ln(4c/Y) (the brief's central-strip estimate).
+/// regular remainder. For Y ≪ c, J ≈ 2cY ln(4c/Y) (the central-strip estimate).
 pub fn kernel_integral_from_origin(c: f64, big_y: f64) -> f64 {
     if !(c.is_finite() && c > 0.0 && big_y > 0.0) {
         return 0.0;
@@ -770,7 +770,7 @@ mod tests {
                 "Y/c = {ratio}: tabulated {tabulated} vs {reference}"
             );
         }
-        // The brief's central-strip estimate 2cΔ ln(8c/Δ), error < 0.03 % for Δ ≤ 0.1c.
+        // The central-strip estimate 2cΔ ln(8c/Δ), error < 0.03 % for Δ ≤ 0.1c.
         for width in [0.1 * c, 0.03 * c, 0.001 * c] {
             let central = 2.0 * kernel_integral_from_origin(c, 0.5 * width);
             let estimate = 2.0 * c * width * (8.0 * c / width).ln();
@@ -810,7 +810,7 @@ mod tests {
 
     #[test]
     fn epsilon_one_half_circle_is_hertz() {
-        // With ε = 0.5 KP is exact for a circle (physics.md §5.4): N, a, p0 of Hertz. This also
+        // With ε = 0.5 KP is exact for a circle (docs/theory.md §5.4): N, a, p0 of Hertz. This also
         // fixes the constant of KP5: πE* with E* = NormalParams::e_star = E/(2(1 − ν²)).
         // Tolerances, 200 strips over 2.2 a (Δs/a = 0.011): the scheme is second order with
         // |N/N_H − 1| ≈ 0.11 (Δs/a)² when y0 and the patch edges sit on strip boundaries (the
@@ -853,8 +853,8 @@ mod tests {
     }
 
     #[test]
-    fn equal_approach_table_of_the_brief() {
-        // physics.md §5.4 with ε = 0.55 at equal δ. Tolerances: half a unit of the printed last
+    fn equal_approach_table() {
+        // docs/theory.md §5.4 with ε = 0.55 at equal δ. Tolerances: half a unit of the printed last
         // digit (N, p0: 5e−4; area: 5e−3) plus the discretisation (≤ 3e−5 for N and p0, 1e−3
         // for the area, as in the ε = 0.5 test), rounded up.
         let cases = [
@@ -945,7 +945,8 @@ mod tests {
             assert!((sum.area / plain_area - 1.0).abs() < 2e-3);
             assert!((sum.area / (PI * a_v * b_v) - 1.0).abs() < 2e-3);
         }
-        // The brief's a/a_H = (0.55/√(ε_x ε_y))^{1/2}: 1.049 (A = B), 1.081 (A/B = 0.1).
+        // The expected a/a_H (docs/theory.md §5.4) = (0.55/√(ε_x ε_y))^{1/2}: 1.049 (A = B), 1.081
+        // (A/B = 0.1).
         for (ratio, expected) in [(1.0, 1.049), (0.1, 1.081), (0.02, 1.123)] {
             let curv_a = ratio * CURV_B;
             let h = hertz(curv_a, CURV_B, DELTA);

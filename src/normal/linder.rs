@@ -3,25 +3,25 @@
 //! Papers: C. Linder, *Verschleiß von Eisenbahnrädern mit Unrundheiten*, Diss. ETH Zürich
 //! Nr. 12342, 1997 (the model; title *unverified*, not at hand); M. Sh. Sichani, R. Enblom,
 //! M. Berg, "Comparison of non-elliptic contact models: towards fast and accurate modelling of
-//! wheel–rail contact", Wear 314 (2014) 111–117 (the seed, which calls it "Approach 1"). Neither
-//! paper's equations were at hand: the strip rule is the **reconstruction of physics.md §5.3**
-//! ("[R] recommended reading"), in the notation of §5.1.
+//! wheel–rail contact", Wear 314 (2014) 111–117 (which calls it "Approach 1"). Neither
+//! paper's equations were at hand: the strip rule is **our reading, docs/theory.md §5.3**
+//! in the notation of §5.1.
 //!
-//! # Equations (physics.md labels)
+//! # Equations (labels of docs/theory.md)
 //!
 //! On the strips of [`StripGeometry`] (centres s_i, width Δs, first-contact point s = 0):
 //!
-//! * **§5.3 [E]** constant virtual-penetration factor ε = [`LINDER_EPSILON`] = 0.55, no patch
-//!   correction.
+//! * **§5.3 (published)** constant virtual-penetration factor ε = [`LINDER_EPSILON`] = 0.55, no
+//!   patch correction.
 //! * **§5.1** strip i is in contact where εδ − f_i > 0 (and A_i > 0); its half-length is
 //!   x_l,i = √((εδ − f_i)/A_i).
-//! * **§5.3 [R]** the patch is one virtual ellipse with lateral semi-axis b_L and centre y_c
-//!   (choice "Lateral semi-axis and centre" below). Strip j gets the local
+//! * **§5.3 (our reading)** the patch is one virtual ellipse with lateral semi-axis b_L and centre
+//!   y_c (choice "Lateral semi-axis and centre" below). Strip j gets the local
 //!   ellipse (a_j, b_L) through its ends: a_j = x_l,j/√(1 − ζ_j²), ζ_j = (s_j − y_c)/b_L, capped
 //!   (below). Its peak p0_j is the Hertz peak of the ellipse (a_j, b_L) from the curvature along
 //!   its **longer** semi-axis (choice, "Peak rule" below): A_j if a_j ≥ b_L, else
 //!   B_j = A_j a_j²/b_L² (the lateral curvature for which (a_j, b_L) is a virtual ellipse), by the
-//!   curvature relation of physics.md §2.4 ([`hertz_peak_from_curvature`]). The strip carries
+//!   curvature relation of docs/theory.md §2.4 ([`hertz_peak_from_curvature`]). The strip carries
 //!   p_j(x) = p0_j √(1 − ζ_j²) √(1 − (x − x_c,j)²/x_l,j²), i.e. strip peak p0_j √(1 − ζ_j²).
 //! * **V1** N = Σ (π/2) p_j x_l,j Δs ([`StripSolution::set`]). The δ iteration for a prescribed
 //!   load (V2) is the caller's.
@@ -29,12 +29,12 @@
 //! On a Hertz gap f = B s², A constant, every local ellipse is the virtual ellipse
 //! a_v = √(εδ/A), b_v = √(εδ/B) and the pressure is the semi-ellipsoid of peak p0(a_v, b_v) —
 //! up to the O((Δs/b)²) of the semi-axis's moments (below). At equal δ this gives p0/p0_H = 1.049, 0.904, 0.759
-//! and N/N_H = 1.154, 1.010, 0.888 for A/B = 1, 1/3, 1/10 (physics.md §5.3 table; tested), and the
+//! and N/N_H = 1.154, 1.010, 0.888 for A/B = 1, 1/3, 1/10 (docs/theory.md §5.3; tested), and the
 //! same for A/B = 3 and 10 (the turned ellipses).
 //!
-//! # Choices where the brief leaves the reading open
+//! # Choices where the published description leaves the reading open
 //!
-//! * **Lateral semi-axis and centre [R → choice]:** from the moments of the margin
+//! * **Lateral semi-axis and centre (our choice):** from the moments of the margin
 //!   m(s) = max(0, level − f) (interpolated linearly between strip centres): y_c = ∫ m s/∫ m,
 //!   b² = 5 ∫ m (s − y_c)²/∫ m — exact for a virtual ellipse, whose margin is parabolic in s. They
 //!   are taken once per geometry, at the level of the strip set's ends (the extent the patch was
@@ -46,19 +46,19 @@
 //!   or two runs join, and with it every strip's peak: N(δ) jumps or decreases, and the load can
 //!   be carried at two wheel heights. With the shape fixed per geometry, N(δ) is continuous and
 //!   increasing.
-//! * **Peak rule [R → choice]:** a virtual ellipse is not the Hertz ellipse of its curvatures
+//! * **Peak rule (our choice):** a virtual ellipse is not the Hertz ellipse of its curvatures
 //!   (ε = 0.55 on both axes, Hertz has ε_x ≠ ε_y), so the Hertz relations from A and from B give
-//!   different peaks, and the brief's reading (from A, §2.4) is one of them. Taken from A alone
-//!   the model is asymmetric: for A > B (b > a, a wide patch — the seed's own central case, where
-//!   A/B ≈ 3 at the first-contact point) it gives a *smaller* patch and a *higher* peak than
-//!   Hertz at equal load (A/B = 3: area −7.4 %, peak +8.0 %), the opposite of what the seed
-//!   reports for Linder against CONTACT on S1002/UIC60 ("patch too large, pressure too low"),
-//!   and its central-case patch came out smaller than Kik–Piotrowski's, against the seed. The
-//!   relation of the longer axis is the brief's reading wherever a ≥ b and its 90°-turned mirror
-//!   where a < b: the model becomes symmetric in A/B, and at equal load its patch is never smaller
-//!   and its peak never higher than Hertz (A/B = 1/3 or 3: area +11.0 %, peak −9.9 %; A/B = 0.1
-//!   or 10: +26.6 %, −21.0 %; tested). The two relations coincide on the circle, so p0 is
-//!   continuous where a_j crosses b_L.
+//!   different peaks, and the A-based reading (§2.4) is one of them. Taken from A alone
+//!   the model is asymmetric: for A > B (b > a, a wide patch — the central case of
+//!   tests/data/README.md, where A/B ≈ 3 at the first-contact point) it gives a *smaller* patch and
+//!   a *higher* peak than Hertz at equal load (A/B = 3: area −7.4 %, peak +8.0 %), the opposite of
+//!   what Sichani et al. (2014) report for Linder against CONTACT on S1002/UIC60 ("patch too
+//!   large, pressure too low"), and its central-case patch came out smaller than Kik–Piotrowski's,
+//!   against that paper. The relation of the longer axis is the A-based reading wherever a ≥ b and
+//!   its 90°-turned mirror where a < b: the model becomes symmetric in A/B, and at equal load its
+//!   patch is never smaller and its peak never higher than Hertz (A/B = 1/3 or 3: area +11.0 %,
+//!   peak −9.9 %; A/B = 0.1 or 10: +26.6 %, −21.0 %; tested). The two relations coincide on the
+//!   circle, so p0 is continuous where a_j crosses b_L.
 //! * **Cap of a_j:** a_j ≤ L, L the patch half-length (the larger of the longest strip's x_l and
 //!   the virtual ellipse's half-length at y_c, √(m(y_c)/A(y_c)), exact on a Hertz gap). A local ellipse is never longer than the patch. On a Hertz gap a_j = L = a_v for every
 //!   strip, so the cap never binds there; it binds where the patch is fuller than an ellipse near
@@ -69,7 +69,7 @@
 //! * **Several lobes in one geometry:** one virtual ellipse across them (the patch groups cut
 //!   separate contacts into separate patches first, `crate::geometry::groups`).
 //! * **Unusable strips:** a strip with A ≤ 0 or a non-finite A or f is out of contact (Linder
-//!   needs only f and A; B is not used, so B ≤ 0 is harmless, physics.md §5.10).
+//!   needs only f and A; B is not used, so B ≤ 0 is harmless, docs/theory.md §5.9).
 //!
 //! # Known limits
 //!
@@ -92,8 +92,8 @@ use crate::normal::strips::{first_contact_points, StripSolution, MAX_CONTACT_POI
 use crate::normal::{NormalParams, StripModel};
 use crate::numeric::elliptic::complete_elliptic_from_complementary;
 
-/// Linder's constant virtual-penetration factor ε [-] (Linder 1997, as given by the seed,
-/// physics.md §5.3 [E]).
+/// Linder's constant virtual-penetration factor ε [-] (Linder 1997, as given by Sichani et al.
+/// 2014, docs/theory.md §5.3).
 pub const LINDER_EPSILON: f64 = 0.55;
 
 /// Below this squared eccentricity the ellipse is treated as a circle in
@@ -103,8 +103,9 @@ const CIRCLE_ECCENTRICITY_SQUARED: f64 = 1e-12;
 
 /// Hertz peak pressure p0 [Pa] of an elliptic contact with semi-axes `semi_x` = a (along x, the
 /// direction of the curvature A) and `semi_y` = b [m], from the relative curvature `curv_a` = A
-/// [1/m] along x and the contact modulus `e_star` E* [Pa] (physics.md §2.4, "local peak pressure
-/// from A"; Johnson 1985 §3.4 for the displacement of the semi-ellipsoidal pressure):
+/// [1/m] along x and the contact modulus `e_star` E* [Pa] (docs/theory.md §2.4, "peak pressure of a
+/// local ellipse, from A"; Johnson 1985 §3.4 for the displacement of the semi-ellipsoidal
+/// pressure):
 ///
 /// * a ≥ b: p0 = E* A a² e²/(b (K − E)), e² = 1 − b²/a²;
 /// * a < b: p0 = E* A a e²/(E − (a/b)² K), e² = 1 − a²/b²;
@@ -437,7 +438,7 @@ mod tests {
         StripGeometry::quadratic(curv_a, curv_b, -1.13 * b_v, 1.07 * b_v, STRIPS)
     }
 
-    /// δ for the load `target` by V2 (physics.md §5.2), to 1e−10.
+    /// δ for the load `target` by V2 (docs/theory.md §5.2), to 1e−10.
     fn approach_for_load(geom_of: impl Fn(f64) -> StripGeometry, target: f64, start: f64) -> f64 {
         let mut delta = start;
         for _ in 0..100 {
@@ -519,8 +520,8 @@ mod tests {
     }
 
     #[test]
-    fn equal_approach_table_of_the_brief() {
-        // physics.md §5.3: p0/p0_H and N/N_H at equal δ. Tolerance: half a unit of the printed
+    fn equal_approach_table() {
+        // docs/theory.md §5.3: p0/p0_H and N/N_H at equal δ. Tolerance: half a unit of the printed
         // last digit (5e−4) plus the discretisation: the V1 midpoint sum of ∝ 1 − s²/b² on
         // 200 strips over 2.2 b_v errs by ~(Δs/b_v)²/8 ≈ 2e−5, the strip-sampled peak by
         // ≤ (Δs/2b_v)²/2 ≈ 1.5e−5.
@@ -529,7 +530,7 @@ mod tests {
             (1.0 / 3.0, 0.904, 1.010),
             (0.1, 0.759, 0.888),
             // The longer-axis peak rule makes the table symmetric in A/B: A/B = 3 is the
-            // A/B = 1/3 case turned by 90°, so the brief's A-based 1.186/1.326 become these.
+            // A/B = 1/3 case turned by 90°, so the A-based reading's 1.186/1.326 become these.
             (3.0, 0.904, 1.010),
             (10.0, 0.759, 0.888),
         ];
@@ -540,8 +541,8 @@ mod tests {
             let h = hertz(curv_a, CURV_B, DELTA);
             let sum = PatchSummary::of(&geom, &sol);
             eprintln!(
-                "A/B = {ratio:.4}: p0/p0_H = {:.5} (brief {p0_ratio}), N/N_H = {:.5} \
-                 (brief {n_ratio})",
+                "A/B = {ratio:.4}: p0/p0_H = {:.5} (expected {p0_ratio}), N/N_H = {:.5} \
+                 (expected {n_ratio})",
                 sum.pmax / h.p0,
                 n / h.normal_force
             );
@@ -553,9 +554,9 @@ mod tests {
     #[test]
     fn equal_load_patch_larger_and_peak_lower_for_long_patches() {
         // At the Hertz load of δ = 50 µm, V2 on the Linder solve.
-        // A < B (a > b): area larger, peak lower than Hertz (the seed's observation).
-        // A = B: Linder is exactly Hertz at equal load (N ∝ a_v³ with Hertz's own constant).
-        // A > B (b > a, the wide patch of the seed's central case): the same, by the
+        // A < B (a > b): area larger, peak lower than Hertz (as Sichani et al. 2014 observed
+        // against CONTACT). A = B: Linder is exactly Hertz at equal load (N ∝ a_v³ with Hertz's own
+        // constant). A > B (b > a, the wide patch of the central case): the same, by the
         // longer-axis peak rule.
         for (ratio, larger) in [
             (1.0 / 3.0, true),

@@ -32,7 +32,7 @@ pub const DEFAULT_STRIPS: usize = 24;
 pub struct NormalParams {
     /// Contact modulus E* = E/(2(1 − ν²)) [Pa].
     pub e_star: f64,
-    /// Floor of the lateral curvature B [1/m] (physics.md §5.10; default 0.1 1/m = CONTACT's
+    /// Floor of the lateral curvature B [1/m] (docs/theory.md §5.9; default 0.1 1/m = CONTACT's
     /// 1e−4 1/mm): STRIPES-B and ANALYN replace B < b_min by b_min, STRIPES-A&B shifts all B by
     /// max(0, b_min − min B).
     pub b_min: f64,

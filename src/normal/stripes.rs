@@ -2,18 +2,18 @@
 //! reconstruction of Approach 4 ([`StripesAB`], A and B corrected, no smoothing).
 //!
 //! Papers: M. Sh. Sichani, R. Enblom, M. Berg, "Comparison of non-elliptic contact models: towards
-//! fast and accurate modelling of wheel–rail contact", Wear 314 (2014) 111–117 (the seed, which
-//! names the approaches); J.-B. Ayasse, H. Chollet, "Determination of the wheel rail contact patch
-//! in semi-Hertzian conditions", Vehicle System Dynamics 43 (2005) (STRIPES). Neither
-//! paper's equations were at hand: what follows is the **reconstruction of physics.md §5.6 (S0–S6)
-//! and §5.7**, with the labels used there.
+//! fast and accurate modelling of wheel–rail contact", Wear 314 (2014) 111–117 (the comparison,
+//! which names the approaches); J.-B. Ayasse, H. Chollet, "Determination of the wheel rail contact
+//! patch in semi-Hertzian conditions", Vehicle System Dynamics 43 (2005) (STRIPES). Neither
+//! paper's equations were at hand: what follows is **our reading, docs/theory.md §5.5 (S0–S6)
+//! and §5.6**, with the labels used there.
 //!
-//! # Approach 3, [`StripesB`] (physics.md §5.6, \[R\])
+//! # Approach 3, [`StripesB`] (docs/theory.md §5.5, our reading)
 //!
 //! On the strips of [`StripGeometry`] (centres s_i, width Δs, first-contact point s = 0):
 //!
 //! * **S0** B_i is smoothed by a centred least-squares parabola (below), then floored:
-//!   B_i ≤ B_min → B_min (Ayasse–Chollet's replacement rule, physics.md §5.10).
+//!   B_i ≤ B_min → B_min (Ayasse–Chollet's replacement rule, docs/theory.md §5.9).
 //! * **S1** ε_i = ε_x(A_i/B_i), the local Hertz split A a² = ε_x δ (H6), from [`HertzShapeTable`].
 //! * **S2** B*_i = B_i ε_i/(1 − ε_i).
 //! * **S3** f*(s) = ∫₀ˢ (s − t) 2B*(t) dt, i.e. f*'' = 2B*, f*(0) = f*'(0) = 0.
@@ -27,9 +27,9 @@
 //! x_l² = (εδ/A)(1 − s²/b²) with b² = εδ/B* = (1 − ε)δ/B = ε_y δ/B, which is the Hertz half-width
 //! (H6); with S5 the strip pressure is p0_H √(1 − s²/b² − x²/a²), the Hertz pressure.
 //!
-//! # Approach 4, [`StripesAB`] (physics.md §5.7, \[U\]: reconstructed, experimental)
+//! # Approach 4, [`StripesAB`] (docs/theory.md §5.6: reconstructed, experimental)
 //!
-//! The brief's template with its suggested cube-root split ε̃(A/B) = 1/(1 + (A/B)^{1/3})
+//! The template of docs/theory.md §5.6 with the cube-root split ε̃(A/B) = 1/(1 + (A/B)^{1/3})
 //! ([`approximate_shape_factor`]):
 //!
 //! * B_i ← B_i + max(0, B_min − min_j B_j), the minimum taken over all strips of the geometry
@@ -45,9 +45,10 @@
 //! (tested), −8.6 % at A/B = 0.02. The strip peaks are p0_H √(1 − s²/b̃²), so p0 = p0_H and
 //! N/N_H = b̃/b_H.
 //!
-//! # Choices where the brief leaves the reading open
+//! # Choices where the published description leaves the reading open
 //!
-//! * **S0 filter \[U\]:** a least-squares parabola in s, centred on each strip, over the strips
+//! * **S0 filter (our choice):** a least-squares parabola in s, centred on each strip, over the
+//!   strips
 //!   |j − i| ≤ m, m = ⌊w n / 2⌋ with w = `params.b_smoothing` (the window spans the fraction w of
 //!   the strip set's width nΔs; w = 0 or m = 0: no smoothing). Near the ends the window is
 //!   truncated and the fit is one-sided. The parabola (not a moving average) because it
@@ -56,24 +57,24 @@
 //!   ends. Smoothing acts on the raw B (non-finite values first replaced by B_min), the floor after
 //!   it, as S0 orders it. The window is a fraction of the strip set, not of the δ-dependent contact
 //!   width: `prepare` is δ-independent.
-//! * **S3 \[U\]: double integration, not f·B*/B.** Both are exact on a Hertz gap. Integration is
-//!   chosen because the seed says that smoothing B smooths the patch boundary, which holds only if
-//!   the boundary is built from the (smoothed) B; with f·B*/B the smoothing would only enter
-//!   through ε. Discretisation: 2B* is taken piecewise constant on the strips (B*_i on
-//!   [s_i − Δs/2, s_i + Δs/2], extended by the end strip's value beyond the set) and integrated
-//!   exactly from s = 0 outwards, so the first-contact point may lie anywhere in a strip (or
-//!   outside the set): f*_i = ∫₀^{s_i} (s_i − t) 2B*(t) dt exactly for that piecewise-constant B*.
-//!   Constant B* gives f* = B* s² to round-off (the exactness above); for smooth B* the error of
-//!   f*_i is O(Δs²). Consequence: the corrected gap is convex, so a second minimum of f inside the
-//!   strip set is not found: a gap with disjoint contact regions must be cut into separate patches
-//!   (physics.md §5.1) before STRIPES sees it.
-//! * **S5 \[R\]: local peak from the strip length.** The strip carries the Hertz ellipse of
+//! * **S3 (our choice): double integration, not f·B*/B.** Both are exact on a Hertz gap.
+//!   Integration is chosen because Sichani et al. (2014) say that smoothing B smooths the patch
+//!   boundary, which holds only if the boundary is built from the (smoothed) B; with f·B*/B the
+//!   smoothing would only enter through ε. Discretisation: 2B* is taken piecewise constant on the
+//!   strips (B*_i on [s_i − Δs/2, s_i + Δs/2], extended by the end strip's value beyond the set)
+//!   and integrated exactly from s = 0 outwards, so the first-contact point may lie anywhere in a
+//!   strip (or outside the set): f*_i = ∫₀^{s_i} (s_i − t) 2B*(t) dt exactly for that
+//!   piecewise-constant B*. Constant B* gives f* = B* s² to round-off (the exactness above); for
+//!   smooth B* the error of f*_i is O(Δs²). Consequence: the corrected gap is convex, so a second
+//!   minimum of f inside the strip set is not found: a gap with disjoint contact regions must be
+//!   cut into separate patches (docs/theory.md §5.1) before STRIPES sees it.
+//! * **S5 (our reading): local peak from the strip length.** The strip carries the Hertz ellipse of
 //!   (A_i, B_i) whose x-semi-axis is a = x_l,i. That ellipse has the approach δ_e = A_i a²/ε_i
 //!   (H6) and the peak p0 = E* √(δ_e (A_i + B_i)) P(A_i/B_i) (the table's coefficient), so
-//!   p0_i = E* P_i x_l,i √(A_i (A_i + B_i)/ε_i) — the A-based form of physics.md §2.4
-//!   (circle: 4E*A a/π). Using B* here would break exactness (brief).
-//! * **A4 pressure \[U\]:** the same S5 rule with the shifted curvatures (exact peak on a Hertz
-//!   gap).
+//!   p0_i = E* P_i x_l,i √(A_i (A_i + B_i)/ε_i) — the A-based form of docs/theory.md §2.4
+//!   (circle: 4E*A a/π). Using B* here would break exactness.
+//! * **A4 pressure (our choice):** the same S5 rule with the shifted curvatures (exact peak on a
+//!   Hertz gap).
 //! * **B_min:** `params.b_min` (default 0.1 1/m, CONTACT's 1e−4 1/mm); a non-positive or
 //!   non-finite value falls back to the default.
 //!
@@ -82,11 +83,11 @@
 //! * The corrected gap f* uses only B (S3): where the real surfaces diverge (B < 0 floored to
 //!   B_min) the Approach-3 patch can extend far along s, possibly to the end of the strip set;
 //!   Approach 4's constant shift lets one strongly concave strip anywhere in the set lift every B.
-//! * Approach 4's ε̃ is the brief's candidate, not the paper's formula: its width error grows for
+//! * Approach 4's ε̃ is a candidate, not the paper's formula: its width error grows for
 //!   A/B → 0 (b̃/b_H = 0.914 at A/B = 0.02) — replace when Ayasse & Chollet 2005 is at hand.
 //! * Strips with A_i ≤ 0 or non-finite A_i are out of contact (A > 0 is a precondition of the
 //!   geometry); in the S3 integration they carry B*_i = B_i.
-//! * Per-strip contact angles (the non-planar patch, §5.9) are the caller's.
+//! * Per-strip contact angles (the non-planar patch, §5.8) are the caller's.
 //!
 //! `prepare` and `solve` use fixed arrays of [`MAX_STRIPS`] inside the structs: no allocation, no
 //! panic, and no NaN for any finite geometry and any δ (δ ≤ 0 or NaN: no contact).
@@ -97,7 +98,7 @@ use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
 
 /// Approximate Hertz split ε̃(A/B) = 1/(1 + (A/B)^{1/3}) of the Approach-4 reconstruction
-/// (physics.md §5.7, from a/b ≈ (B/A)^{2/3}); exact (½) at A = B. Curvatures A, B > 0 [1/m].
+/// (docs/theory.md §5.6, from a/b ≈ (B/A)^{2/3}); exact (½) at A = B. Curvatures A, B > 0 [1/m].
 pub fn approximate_shape_factor(curv_a: f64, curv_b: f64) -> f64 {
     1.0 / (1.0 + (curv_a / curv_b).cbrt())
 }
@@ -305,7 +306,7 @@ impl CorrectedStrips {
 }
 
 /// STRIPES Approach 3: local B corrected by the Hertz split, smoothed and floored (S0–S6,
-/// physics.md §5.6). See the module documentation.
+/// docs/theory.md §5.5). See the module documentation.
 #[derive(Debug, Clone, Default)]
 pub struct StripesB {
     strips: CorrectedStrips,
@@ -381,7 +382,7 @@ impl StripModel for StripesB {
 }
 
 /// STRIPES Approach 4 (reconstructed, experimental): A and B corrected with the cube-root split
-/// ε̃, B shifted by one constant, no smoothing (physics.md §5.7). See the module documentation.
+/// ε̃, B shifted by one constant, no smoothing (docs/theory.md §5.6). See the module documentation.
 #[derive(Debug, Clone, Default)]
 pub struct StripesAB {
     strips: CorrectedStrips,
@@ -477,7 +478,7 @@ mod tests {
     const CURV_B: f64 = 1.5;
     /// Approach of the Hertz cases [m].
     const DELTA: f64 = 50e-6;
-    /// Curvature ratios A/B of the brief's exactness check (physics.md §5.6).
+    /// Curvature ratios A/B of the exactness check (docs/theory.md §5.5).
     const RATIOS: [f64; 5] = [1.0, 1.0 / 3.0, 0.1, 3.0, 0.02];
 
     fn params() -> NormalParams {

@@ -20,7 +20,7 @@ pub struct StripSolution {
     /// Strip normal force (π/2) p0_i x_l,i Δs [N].
     pub force: PerStrip<f64>,
     /// The model's own local ellipse of strip i, semi-axes (along x, across) [m], for the
-    /// tangential problem's strip-wise flexibilities (physics.md §4.8); (0, 0) where the model
+    /// tangential problem's strip-wise flexibilities (docs/theory.md §4.7); (0, 0) where the model
     /// defines none (only Linder sets it: (a_j, b_L)).
     pub local_axes: PerStrip<(f64, f64)>,
 }

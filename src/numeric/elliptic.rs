@@ -1,6 +1,6 @@
 //! Complete elliptic integrals of the first and second kind by the arithmetic–geometric mean.
 //!
-//! Implements physics.md §2.6 (used by Hertz H1–H7): with the complementary modulus
+//! Implements docs/theory.md §9.1 (used by Hertz H1–H7, §2): with the complementary modulus
 //! k' = √(1 − k²) start a₀ = 1, b₀ = k', c₀ = k and iterate
 //! a ← (a + b)/2, b ← √(ab), c ← (a − b)/2 while accumulating S = Σ_{n≥0} 2^{n−1} c_n².
 //! Then K = π/(2a_∞), E = K(1 − S) and **K − E = K·S**, which has no cancellation near the
@@ -9,7 +9,7 @@
 //!
 //! Known limits: k' must lie in (0, 1]. k' → 0 (k → 1) is fine numerically down to the
 //! smallest normal f64 (K grows like ln(4/k')), but K is infinite at k' = 0. Relative accuracy is
-//! a few ulp (the brief reports ≤ 2e−15 against SciPy).
+//! a few ulp.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -29,13 +29,13 @@ pub struct CompleteElliptic {
 /// log₂(ln(4/k')) + 5 ≈ 15 at k' = 1e−300, so 64 is never reached in practice.
 const MAX_AGM_ITERATIONS: usize = 64;
 
-/// Stop when c_n < `AGM_TOLERANCE`·a_n (physics.md §2.6): c_n² then lies below 1e−32 of the
+/// Stop when c_n < `AGM_TOLERANCE`·a_n (docs/theory.md §9.1): c_n² then lies below 1e−32 of the
 /// accumulated S, far under f64 resolution.
 const AGM_TOLERANCE: f64 = 1e-16;
 
 /// K, E and K − E from the complementary modulus k' = √(1 − k²) ∈ (0, 1].
 ///
-/// Hertz (physics.md §2.2) gives k' = g = b'/a' directly, which is why this is the argument.
+/// Hertz (docs/theory.md §2.2) gives k' = g = b'/a' directly, which is why this is the argument.
 /// Values outside (0, 1] are a caller error (checked in debug builds); the Hertz code never
 /// passes them.
 pub fn complete_elliptic_from_complementary(k_prime: f64) -> CompleteElliptic {

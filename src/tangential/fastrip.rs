@@ -3,7 +3,8 @@
 //! Paper: M. Sh. Sichani, R. Enblom, M. Berg, "An alternative to FASTSIM for tangential solution
 //! of the wheel–rail contact", *Vehicle System Dynamics* 54(6) (2016) 748–764; as implemented in
 //! CONTACT ("modified FASTRIP", E.A.H. Vollebregt), which is the oracle here. Equations as
-//! labelled in physics.md §6 (the paper itself was not re-read; §6 is marked [E] via CONTACT):
+//! labelled in docs/theory.md §6 (CONTACT's implementation is the check; the paper's text was not
+//! re-read):
 //!
 //! * **FS1** dimensionless creepages from the (equivalent) ellipse a, b, the Kalker coefficients,
 //!   G, ν, μ and the peak pressure p0 ([`FastripScales::new`]):
@@ -15,20 +16,20 @@
 //!   q_x = μ(p0/a)[κ√(a_y² − x²) − κ√((a_y−d)² − (x−d)²)],
 //!   q_y = μ(p0/a)[λ√(a_y² − x²) − λ'√((a_y−d)² − (x−d)²)];
 //!   in the slip zone |q| = μp with the direction of a FASTSIM pass over the same strip (F3 of
-//!   physics.md §4.2 with three flexibilities L1, L2, L3 of F1, spin evaluated at x + Δx/6 as in
-//!   `crate::tangential::fastsim`).
+//!   docs/theory.md §4.2 with three flexibilities L1, L2, L3 of F1, spin evaluated at x + Δx/6 as
+//!   in `crate::tangential::fastsim`).
 //!
 //! With the 3-D Kalker coefficients in FS1 the small-creepage limit is Kalker's linear theory,
 //! Fx = −G ab C11 ξ, Fy = −G ab C22 η − G (ab)^{3/2} C23 φ, analytically (the Carter-type
 //! strip tractions integrate to it exactly); on a grid it is reached at the rate discussed below.
 //!
-//! # Choices where the brief or §6 is ambiguous
+//! # Choices where the published description is ambiguous (docs/theory.md §6)
 //!
 //! 1. **|φ*| ≥ 1.** FS2 is used whenever it has a non-negative root: for |φ*| > 1 that is the case
 //!    when η*φ* < 0 and the root argument is ≥ 0; otherwise (negative root argument, d < 0) the
 //!    strip slides fully. CONTACT's printout requires this reading: the oracle case itself has
 //!    φ* = −1.0019, and the rule "|φ*| ≥ 1 ⇒ full sliding" (CONTACT's public source of 2023,
-//!    eve70a/CONTACT `m_solvpt.f90`; an option per physics.md §6) would give FASTSIM's −0.6016
+//!    eve70a/CONTACT `m_solvpt.f90`, where it is an option) would give FASTSIM's −0.6016
 //!    instead of −0.6435.
 //!    FS2 is evaluated in the rationalised form d = (a/(1−ν)) (η*² + s²)/(√(η*² + (1−φ*²)s²) − η*φ*),
 //!    s = ξ* − φ*y/a (algebraically identical, no division by 1 − φ*², no overflow of squares).
@@ -46,11 +47,11 @@
 //!    (μp, FASTSIM direction). In the oracle case this never triggers (CONTACT, which has no
 //!    such check, is reproduced element for element).
 //! 3. **Slip zone.** Magnitude μp at the element centre, direction of the FASTSIM traction of the
-//!    same element (slip or adhesion in FASTSIM), as §6 states; the element counts as slipping.
-//!    (The 2023 CONTACT source kept the FASTSIM traction itself; that gives −0.633 on the oracle
-//!    case at 200², the printout's −0.6442 needs μp.) If the FASTSIM traction is zero the
-//!    traction is zero. With unusable flexibilities (≤ 0 or not finite) the direction is that of
-//!    −w, the rigid slip — FASTSIM's large-creepage limit with equal flexibilities.
+//!    same element (slip or adhesion in FASTSIM), as docs/theory.md §6.3 states; the element counts
+//!    as slipping. (The 2023 CONTACT source kept the FASTSIM traction itself; that gives −0.633 on
+//!    the oracle case at 200², the printout's −0.6442 needs μp.) If the FASTSIM traction is zero
+//!    the traction is zero. With unusable flexibilities (≤ 0 or not finite) the direction is that
+//!    of −w, the rigid slip — FASTSIM's large-creepage limit with equal flexibilities.
 //! 4. **Non-elliptic strips** ([`solve_strip`]). On a Hertz ellipse the strip at y has
 //!    a_y = a√(1 − y²/b²) and p(x) = (p0/a)√(a_y² − x²). A general strip has its own half-length
 //!    x_l, centre x_c and peak pmax, p(x) = (pmax/x_l)√(x_l² − (x − x_c)²). Kalker's strip theory
@@ -90,7 +91,7 @@
 //!
 //! # Measured accuracy (tests)
 //!
-//! Oracle (physics.md §4.6, CONTACT fastsim.ref_out cases 4 and 7, a = 8, b = 4 mm, N = 82 kN,
+//! Oracle (docs/theory.md §4.6, CONTACT fastsim.ref_out cases 4 and 7, a = 8, b = 4 mm, N = 82 kN,
 //! G = 82 000 N/mm², ν = 0.28, μ = 0.3, ξ = 0, η = −6.25e−4, φ = 6.25e−4 mm⁻¹): on CONTACT's grid
 //! and conventions Fy/(μN) = −0.64347 and Mz = −48.165 N·m at 40² (printout −0.6435, −4.816e4
 //! N·mm; frictional power 614.04 W, printout 614.0; adhesion elements 626 = 626), −0.64417,
@@ -149,7 +150,7 @@ impl FastripScales {
     ///
     /// Never fails: a zero creepage gives a zero starred value; degenerate loading (μp0 = 0, a =
     /// 0, …) gives non-finite values, which [`solve_strip`] treats as full sliding.
-    #[allow(clippy::too_many_arguments)] // the brief's API: one argument per physical input
+    #[allow(clippy::too_many_arguments)] // one argument per physical input
     pub fn new(
         a: f64,
         b: f64,
@@ -427,7 +428,7 @@ fn usable_flexibilities(flex: [f64; 3]) -> bool {
 ///
 /// # Panics
 /// If a slice's length differs from `nx` (a programming error, not an input value).
-#[allow(clippy::too_many_arguments)] // the brief's API
+#[allow(clippy::too_many_arguments)] // one argument per physical input
 pub fn solve_strip(
     strip: &FastripStrip,
     scales: &FastripScales,
@@ -721,7 +722,7 @@ impl FastripResult {
 ///
 /// Errors name "xi", "eta", "phi", "mu", "nu", "G", "N", "a", "b", "a/b", "nx", "ny"
 /// (`nx`, `ny` ∈ [1, 10 000]). N = 0 gives the all-zero result (a, b are then not checked).
-#[allow(clippy::too_many_arguments)] // the brief's API
+#[allow(clippy::too_many_arguments)] // one argument per physical input
 pub fn solve_ellipse(
     a: f64,
     b: f64,
@@ -840,7 +841,7 @@ pub fn solve_ellipse(
 mod tests {
     use super::*;
 
-    // CONTACT `fastsim` example (physics.md §4.6, fastsim.ref_out cases 4 and 7) in SI units.
+    // CONTACT `fastsim` example (docs/theory.md §4.6, fastsim.ref_out cases 4 and 7) in SI units.
     const A: f64 = 8e-3;
     const B: f64 = 4e-3;
     const N: f64 = 82_000.0;
@@ -1037,8 +1038,9 @@ mod tests {
     fn solve_ellipse_oracle_within_one_percent() {
         // Our own driver (exact strip lengths a_y, Hertz FS1 ellipse) differs from CONTACT's grid
         // conventions by O(Δx): measured −0.6410 (−0.39 %) and −48.148 N·m (−0.03 %) at 40²;
-        // 1 % is the claim of physics.md §6. At 200² against CONTACT's 200² printout
-        // (−0.6442, −47.57 N·m): measured −0.6439 (−0.04 %), −47.578 N·m (+0.02 %): 0.2 %.
+        // 1 % is the agreement the tests claim (docs/theory.md §6.5). At 200² against CONTACT's
+        // 200² printout (−0.6442, −47.57 N·m): measured −0.6439 (−0.04 %), −47.578 N·m (+0.02 %):
+        // 0.2 %.
         let r = oracle(40);
         assert!(rel(r.fy / MU_N, -0.6435) < 0.01, "{}", r.fy / MU_N);
         assert!(rel(r.mz, -48.16) < 0.01, "{}", r.mz);

@@ -2,22 +2,22 @@
 //!
 //! Papers: J.J. Kalker, *Three-dimensional elastic bodies in rolling contact* (Kluwer, 1990),
 //! Table E.3 (the values CONTACT uses); asymptotes from Kalker (1967/1990) as coded in CONTACT.
-//! Equations as labelled in physics.md §3:
+//! Equations as labelled in docs/theory.md §3:
 //!
-//! * **Table E.3** (§3.1), rows g = 0.1 … 1.0 for a ≤ b (g = a/b) and for a ≥ b (g = b/a), columns
+//! * **Table E.3** (§3.2), rows g = 0.1 … 1.0 for a ≤ b (g = a/b) and for a ≥ b (g = b/a), columns
 //!   ν = 0, 0.25, 0.5. The two typos of public ports are corrected: C23(a/b = 0.8, ν = 0.25) = 1.25
 //!   and C11(b/a = 0.9, ν = 0) = 3.51 (tests `typo_cells` and `table_columns_are_smooth`).
-//! * **Interpolation** (§3.2): linear in g between rows, then **K1**, quadratic Lagrange
+//! * **Interpolation** (§3.3): linear in g between rows, then **K1**, quadratic Lagrange
 //!   interpolation of 1/C through ν = 0, 0.25, 0.5.
-//! * **K2** (a ≪ b) and **K3** (a ≫ b) asymptotes for g < 0.1 (§3.3).
+//! * **K2** (a ≪ b) and **K3** (a ≫ b) asymptotes for g < 0.1 (§3.4).
 //!
-//! Linear theory (conventions, physics.md §1): Fx = −G c² C11 ξ, Fy = −G c² C22 η − G c³ C23 φ,
-//! c² = ab; C32 = −C23.
+//! Linear theory (docs/conventions.md, docs/theory.md §3.1): Fx = −G c² C11 ξ, Fy = −G c² C22 η − G
+//! c³ C23 φ, c² = ab; C32 = −C23.
 //!
-//! **Decision on the jump at g = 0.1 [U, physics.md §3.3]: blend.** The raw asymptotes differ from
-//! the table at g = 0.1 by up to 3 % (ν = 0) … 6 % (ν = 0.5), which would show as a force jump
-//! when a patch passes 10:1 and upset the step-size control of the co-simulation master. Below
-//! g = 0.1 this module therefore uses
+//! **Decision on the jump at g = 0.1 (our choice, docs/theory.md §3.4): blend.** The raw asymptotes
+//! differ from the table at g = 0.1 by up to 3 % (ν = 0) … 6 % (ν = 0.5), which would show as a
+//! force jump when a patch passes 10:1 and upset the step-size control of the co-simulation master.
+//! Below g = 0.1 this module therefore uses
 //!
 //! ```text
 //! C(g, ν) = C_asym(g, ν) · [1 + (ρ(ν) − 1) · g/0.1],   ρ(ν) = C_table(0.1, ν) / C_asym(0.1, ν)
@@ -30,7 +30,7 @@
 //! Known limits: ν ∈ [0, 0.5]; the ratio a/b must lie in [1e−9, 1e9] (beyond that the asymptotes
 //! overflow nothing but the patch is a line contact outside Hertz's range anyway). Table values
 //! have three significant digits (±0.5 % near g = 1), so forces from them carry that uncertainty.
-//! C33 (linear spin moment, §3.4) is not provided.
+//! C33 (linear spin moment, §3.5) is not provided.
 
 use crate::error::{require_positive, InputError};
 use std::f64::consts::PI;
@@ -65,7 +65,7 @@ const TABLE_MIN_G: f64 = 0.1;
 /// Smallest accepted minor/major ratio (see module header).
 const MIN_RATIO: f64 = 1e-9;
 
-/// Table E.3, a ≤ b, rows g = a/b = 0.1, 0.2, …, 1.0 (physics.md §3.1). (The cell value 3.14 is
+/// Table E.3, a ≤ b, rows g = a/b = 0.1, 0.2, …, 1.0 (docs/theory.md §3.2). (The cell value 3.14 is
 /// a creep coefficient, not π.)
 #[allow(clippy::approx_constant)]
 const TABLE_A_LE_B: [TableRow; 10] = [
@@ -98,7 +98,7 @@ const TABLE_A_LE_B: [TableRow; 10] = [
     row([3.40, 4.12, 5.20], [3.40, 3.67, 3.98], [1.33, 1.47, 1.63]),
 ];
 
-/// Table E.3, a ≥ b, rows g = b/a = 0.1, 0.2, …, 1.0 (ascending g; physics.md §3.1 lists them
+/// Table E.3, a ≥ b, rows g = b/a = 0.1, 0.2, …, 1.0 (ascending g; Kalker's table lists them
 /// descending). The g = 1 row is the same circle row as above.
 const TABLE_A_GE_B: [TableRow; 10] = [
     row([10.7, 11.7, 12.9], [10.7, 12.8, 16.0], [12.2, 14.6, 18.0]),
@@ -167,7 +167,7 @@ fn tabulated(g: f64, a_le_b: bool, nu: f64) -> CreepCoefficients {
     }
 }
 
-/// K2: asymptotes for a ≪ b, g = a/b → 0 (physics.md §3.3).
+/// K2: asymptotes for a ≪ b, g = a/b → 0 (docs/theory.md §3.4).
 pub fn asymptote_narrow(g: f64, nu: f64) -> CreepCoefficients {
     CreepCoefficients {
         c11: PI * PI / (4.0 * (1.0 - nu)),
@@ -176,7 +176,7 @@ pub fn asymptote_narrow(g: f64, nu: f64) -> CreepCoefficients {
     }
 }
 
-/// K3: asymptotes for a ≫ b, g = b/a → 0, Λ = ln(16/g²) (physics.md §3.3).
+/// K3: asymptotes for a ≫ b, g = b/a → 0, Λ = ln(16/g²) (docs/theory.md §3.4).
 pub fn asymptote_long(g: f64, nu: f64) -> CreepCoefficients {
     let lambda = (16.0 / (g * g)).ln();
     // 3 − ln 4 appears in Kalker's expansion of both C11 and C22.
@@ -335,8 +335,8 @@ mod tests {
     }
 
     #[test]
-    fn k1_weights_match_the_brief() {
-        // physics.md §3.2 writes the weights with the constants 0.125 and 0.0625; same values.
+    fn k1_weights_match_the_lagrange_form() {
+        // docs/theory.md §3.3 writes the weights with the factors 8 and −16; the same values.
         for &nu in &[0.0, 0.1, 0.25, 0.28, 0.4, 0.5] {
             let w = k1_weights(nu);
             assert!((w[0] - (nu - 0.25) * (nu - 0.5) / 0.125).abs() < 1e-15);
@@ -348,7 +348,7 @@ mod tests {
 
     #[test]
     fn k1_check_value() {
-        // physics.md §3.2: a/b = 2, ν = 0.28 → 5.2037, 4.9715, 2.6566 (4 decimals printed).
+        // docs/theory.md §3.3: a/b = 2, ν = 0.28 → 5.2037, 4.9715, 2.6566 (4 decimals printed).
         let c = creep_coefficients(8e-3, 4e-3, 0.28).unwrap();
         assert!((c.c11 - 5.2037).abs() < 0.5e-4, "{}", c.c11);
         assert!((c.c22 - 4.9715).abs() < 0.5e-4, "{}", c.c22);
@@ -367,7 +367,7 @@ mod tests {
 
     #[test]
     fn documented_jump_of_raw_asymptotes() {
-        // physics.md §3.3: unblended asymptotes at g = 0.1 give C23(a/b = 0.1, ν = 0.5) = 0.687
+        // docs/theory.md §3.4: unblended asymptotes at g = 0.1 give C23(a/b = 0.1, ν = 0.5) = 0.687
         // (table 0.731) and C11(b/a = 0.1, ν = 0.5) = 12.34 (table 12.9). Checks K2/K3 as coded.
         let n = asymptote_narrow(0.1, 0.5);
         assert!((n.c23 - 0.687).abs() < 0.5e-3, "{}", n.c23);
@@ -442,7 +442,8 @@ mod tests {
     #[test]
     fn monotone_in_a_over_b_and_finite() {
         // C22 and C23 grow with a/b throughout (table, blend and asymptotes); C11 too except the
-        // genuine dip of the ν = 0.5 column for a/b ≤ 0.4 (§3.1), so C11 is checked for ν ≤ 0.25.
+        // genuine dip of the ν = 0.5 column for a/b ≤ 0.4 (docs/theory.md §3.2), so C11 is checked
+        // for ν ≤ 0.25.
         for &nu in &[0.0, 0.25, 0.5] {
             let mut prev: Option<CreepCoefficients> = None;
             for k in 0..=400 {

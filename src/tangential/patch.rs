@@ -1,5 +1,5 @@
 //! The tangential problem of one non-elliptic (strip) patch: which flexibilities each strip gets
-//! and which solver runs (physics.md §4.8, §5.9, §6).
+//! and which solver runs (docs/theory.md §4.7, §5.8, §6).
 //!
 //! Options (`tangentialModel` of the WheelRailContact FMU):
 //!
@@ -98,7 +98,7 @@ pub enum FlexibilitySource {
     LocalHertz,
 }
 
-/// The equivalent ellipse of a patch (physics.md §4.8): semi-axes with the patch's area S and
+/// The equivalent ellipse of a patch (docs/theory.md §4.7): semi-axes with the patch's area S and
 /// length/width ratio L/W (W the area-weighted spread width, `PatchSummary::spread_width`,
 /// which is continuous in the wheel height where the whole-strip extent jumps),
 /// a_e = √(S/π)·√(L/W), b_e = √(S/π)·√(W/L), carrying the patch's normal

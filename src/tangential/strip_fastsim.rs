@@ -6,8 +6,8 @@
 //! (2008) (equivalent ellipse, actual pressure as the bound); J.-B. Ayasse, H. Chollet (2005),
 //! "Determination of the wheel rail contact patch in semi-Hertzian conditions", *VSD* 43(3)
 //! 161–172 (STRIPES: local ellipses and per-strip creepages on a non-planar patch); M. Sh.
-//! Sichani, R. Enblom, M. Berg, *Wear* 314 (2014) 111–117 (the seed). Equations: physics.md §4.1
-//! (F1), §4.2 (F3), §4.3, §4.8 and §5.9.
+//! Sichani, R. Enblom, M. Berg, *Wear* 314 (2014) 111–117 (the comparison of the strip models).
+//! Equations: docs/theory.md §4.1 (F1), §4.2 (F3), §4.3, §4.7, §4.8 and §5.8.
 //!
 //! # Equations
 //!
@@ -24,12 +24,13 @@
 //! ```
 //!
 //! with (L1, L2, L3)_j the strip's flexibilities (F1 of the equivalent ellipse or of the strip's
-//! local ellipse — the caller's choice, physics.md §4.8) and (ξ_j, η_j, φ_j, φ_ref) its creepages:
+//! local ellipse — the caller's choice, docs/theory.md §4.7) and (ξ_j, η_j, φ_j, φ_ref) its
+//! creepages:
 //!
 //! * **planar patch** (one contact angle and one spin, as the half-space theory assumes): the
 //!   patch's (ξ, η, φ) on every strip and φ_ref = φ — exactly Kalker's F3 with the spin's lever
 //!   y_j measured from the reference point;
-//! * **non-planar patch** (physics.md §5.9, the seed's STRIPES treatment): φ_j and η_j are the
+//! * **non-planar patch** (docs/theory.md §5.8, STRIPES' treatment): φ_j and η_j are the
 //!   strip's own, from the wheelset kinematics at its contact point in its own axes; the
 //!   longitudinal rigid slip of the strip, ξ_kin,j, is split as ξ_j − φ_ref y_j with φ_ref the
 //!   patch's spin, so that a flat patch (constant contact angle, ξ_kin,j = ξ − φ y_j) gives back
@@ -44,7 +45,7 @@
 //!
 //! # Choices
 //!
-//! * A fixed element count per strip (Kalker 1982's reported choice, physics.md §4.2) rather than
+//! * A fixed element count per strip (docs/theory.md §4.8) rather than
 //!   a uniform Δx over the patch: every strip — also the short ones at the patch ends — is
 //!   resolved equally, the cost is `nx` × strips in contact, and the first-order overshoot of
 //!   full adhesion (≈ 1/nx, `crate::tangential::fastsim` header) is the same on every strip.
@@ -52,8 +53,8 @@
 //!
 //! # Known limits
 //!
-//! Kalker's simplified theory (Winkler bed): no shear coupling between strips, which the seed
-//! names as the missing piece where B ≤ 0 at a patch end; first-order in Δx. Steady rolling,
+//! Kalker's simplified theory (Winkler bed): no shear coupling between strips, which Sichani et al.
+//! (2014) names as the missing piece where B ≤ 0 at a patch end; first-order in Δx. Steady rolling,
 //! constant μ. No heap allocation in [`StripFastsim::solve`]: the traction field buffers are
 //! sized in [`StripFastsim::new`].
 
@@ -507,7 +508,7 @@ mod tests {
     use crate::tangential::kalker::creep_coefficients;
     use std::f64::consts::PI;
 
-    /// CONTACT's `fastsim` example ellipse (physics.md §4.6) in SI units.
+    /// CONTACT's `fastsim` example ellipse (docs/theory.md §4.6) in SI units.
     const A: f64 = 8e-3;
     const B: f64 = 4e-3;
     const N: f64 = 82e3;

@@ -1,5 +1,5 @@
 //! The wheel-height iteration for a prescribed wheel load, shared by the multi-Hertzian and the
-//! strip solutions of a wheel (physics.md §5.2).
+//! strip solutions of a wheel (docs/theory.md §5.2, §8.3).
 //!
 //! The vertical force F(dz) of the rail on a wheel lowered by dz is zero at the touching height
 //! and grows monotonically, but its slope jumps where patches or strips enter and it can jump

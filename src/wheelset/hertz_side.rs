@@ -2,7 +2,7 @@
 //! prescribed-load iteration.
 
 use super::balance::{creep_passes, creep_upward, WarmStart};
-use super::kinematics::{creepages_at, planar_tangential};
+use super::kinematics::{creepages_at, planar_tangential, point_position};
 use super::{
     store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput,
     LOAD_ITERATIONS,
@@ -202,6 +202,7 @@ pub(super) fn add_patch(
     let gamma = reference.contact_angle;
     let (creepage, speed) = creepages_at(input, side.sigma, reference, gamma);
     result.y_rail = reference.y_rail;
+    result.position = point_position(side.sigma, reference, input.yaw, input.roll).into();
     result.contact_angle = gamma;
     result.rolling_radius = reference.rolling_radius;
     result.creepage = creepage;

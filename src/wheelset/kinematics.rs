@@ -62,6 +62,24 @@ pub(super) fn creepages_with(
     }
 }
 
+/// Position of the rigid contact point `p` of side `sigma` relative to the wheelset centre, in
+/// track axes [m], at the wheelset's `yaw` and `roll` [rad]: in the side's rolled wheelset frame
+/// ([`crate::geometry::search`]) the point lies at the longitudinal X (its yaw lead), the
+/// lateral W from the centre and the depth √(r² − d²) below the axle, with r the rolling radius
+/// and d = X cos ψ + W sin ψ its distance from the axle's vertical plane (ψ, θ the side's yaw
+/// and roll); the roll θ turns it back into the track's side frame, whose lateral is mirrored on
+/// the left wheel.
+pub(super) fn point_position(sigma: f64, p: &ContactPoint, yaw: f64, roll: f64) -> Vector3<f64> {
+    let (sin_yaw, cos_yaw) = (sigma * yaw).sin_cos();
+    let (sin_roll, cos_roll) = (sigma * roll).sin_cos();
+    let (x, w, r) = (p.longitudinal, p.lateral, p.rolling_radius);
+    let d = x * cos_yaw + w * sin_yaw;
+    let depth = (r * r - d * d).max(0.0).sqrt();
+    let lateral = w * cos_roll - depth * sin_roll;
+    let height = w * sin_roll + depth * cos_roll;
+    Vector3::new(x, sigma * lateral, height)
+}
+
 /// Unit vectors e_y, e_z of the contact axes at contact angle `gamma` on side `sigma` (track
 /// axes; e_x = (1, 0, 0)).
 pub(super) fn contact_axes(sigma: f64, gamma: f64) -> (Vector3<f64>, Vector3<f64>) {
@@ -96,9 +114,9 @@ pub(super) fn tangential_in_axes(
     Vector3::new(fx, fy * e_y.y, fy * e_y.z)
 }
 
-/// The kinematics of a non-planar patch (docs/theory.md): the rigid-body motion the strips'
-/// creepages come from — the wheelset's own, or with prescribed creepages (which hold at the
-/// reference point) pure rolling at the nominal wheel radius — and its creepages at the patch's
+/// The kinematics of a non-planar patch (docs/theory.md §5.8, §8.1): the rigid-body motion the
+/// strips' creepages come from — the wheelset's own, or with prescribed creepages (which hold at
+/// the reference point) pure rolling at the nominal wheel radius — and its creepages at the patch's
 /// reference point.
 pub(super) struct NonPlanar {
     kinematics: WheelsetInput,

@@ -1,20 +1,28 @@
-//! One wheelset on straight track: contact search on both wheels, multi-Hertzian normal contact,
-//! creepages from the wheelset kinematics, FASTSIM per patch, and the forces in track axes.
+//! One wheelset on straight track: contact search on both wheels, normal contact (multi-Hertzian
+//! or a strip model), creepages from the wheelset kinematics, FASTSIM or FaStrip per patch, and
+//! the forces in track axes (docs/theory.md §7.6–§8.4).
 //!
 //! Per wheel (in its side frame, see [`crate::geometry::track`]):
-//! 1. rigid contact search ([`crate::geometry::search`]) gives the gap function and its minima;
-//! 2. the wheel's vertical position is either prescribed (`z`) or found so that the vertical force
+//! 1. rigid contact search ([`crate::geometry::search`]) gives the gap function, its minima and
+//!    the ridges between them;
+//! 2. the minima form patch groups with continuous weights ([`crate::geometry::groups`],
+//!    docs/theory.md §7.7), at most [`MAX_PATCHES`] shown in the output slots (`slots`);
+//! 3. `normalModel` 1 (`hertz_side`): each group is one Hertz ellipse, with its reference point
+//!    at the centroid of the interpenetration above 0.8 of the group's depth (where `yRail`, the
+//!    contact angle and the rolling radius are taken) and its lateral curvature from the spread of
+//!    the interpenetration (multi-Hertzian: docs/theory.md §2, §7.8); `normalModel` 2–6
+//!    ([`strip_side`]): strips on each group's contact plane, laid out once per step, solved by
+//!    the strip model (docs/theory.md §5, §7.9);
+//! 4. the wheel's vertical position is either prescribed (`z`) or found so that the vertical force
 //!    of the rail on the wheel balances the prescribed wheel load Q — including the vertical
-//!    components of the creep forces, which matter in flange contact (N cos γ + σ Fy sin γ = Q);
-//! 3. each connected interpenetration region is one patch (at most [`MAX_PATCHES`], the deepest
-//!    kept): its reference point is the volume-weighted centroid of the interpenetration
-//!    (CONTACT's contact reference point), which gives `yRail`, the contact angle and the rolling
-//!    radius; its Hertz ellipse uses the curvatures and the normal approach δ_v·cos γ at the
-//!    region's deepest point (multi-Hertzian: physics.md §2, §5.1);
-//! 4. creepages at the reference point from the wheelset's rigid-body motion (body 1 = wheel):
+//!    components of the creep forces, which matter in flange contact (N cos γ + σ Fy sin γ = Q),
+//!    warm-started from the previous step ([`balance`], docs/theory.md §8.3);
+//! 5. creepages at the reference point from the wheelset's rigid-body motion (body 1 = wheel):
 //!    v = v_C + Ω × (P − C), ξ = v·e_x/V, η = v·e_y/V, φ = Ω·e_z/V with V = max(|vx|, V_MIN), or
-//!    prescribed;
-//! 5. FASTSIM per patch (the patch is planar; per-strip spin is the non-elliptic issue's work).
+//!    prescribed (`kinematics`, docs/theory.md §8.1); on a non-planar strip patch every strip
+//!    has its own contact angle, spin and rolling radius (docs/theory.md §5.8);
+//! 6. the tangential problem per patch: FASTSIM on a Hertz ellipse, the `tangentialModel`'s
+//!    solver on a strip patch (docs/theory.md §4, §6).
 //!
 //! Contact axes of a patch, in track axes (x forward, y right, z down), for both wheels
 //! right-handed with e_y pointing to the right: e_x = (1, 0, 0), e_z = (0, σ sin γ, cos γ) (from the
@@ -26,6 +34,7 @@
 //! track; the wheelset's angular velocity has no roll-rate term.
 
 pub mod balance;
+pub mod conicity;
 mod hertz_side;
 mod kinematics;
 mod slots;
@@ -62,6 +71,9 @@ pub const MAX_PATCHES: usize = 3;
 /// wheel at rest has zero creepage). Documented in `docs/conventions.md`.
 pub const V_MIN: f64 = 0.01;
 
+/// Vertical wheel force below which the derailment quotient is 0 (no contact) [N].
+pub const YQ_MIN_LOAD: f64 = 1e-6;
+
 /// Iteration limit of the load balance (safeguarded secant; converges in ~5–10).
 const LOAD_ITERATIONS: usize = 60;
 
@@ -87,7 +99,7 @@ pub struct WheelsetSettings {
     pub tangential: TangentialModel,
     /// Planar treatment of strip patches: one contact angle and one spin for the whole patch
     /// (as the half-space theory assumes). `false`: each strip its own angle, rolling radius
-    /// and creepages (physics.md §5.9).
+    /// and creepages (docs/theory.md §5.8).
     pub planar_patch: bool,
 }
 
@@ -165,6 +177,9 @@ pub struct PatchResult {
     pub length: f64,
     pub width: f64,
     pub y_rail: f64,
+    /// The reference point (on the wheel, rigid) relative to the wheelset centre, track axes
+    /// (x forward with the yaw lead, y right, z down) [m]; the patch's forces act there.
+    pub position: [f64; 3],
     pub contact_angle: f64,
     pub rolling_radius: f64,
     /// Normal approach [m].
@@ -214,6 +229,13 @@ pub struct SideResult {
     pub groups: [PatchResult; MAX_GROUPS],
     /// Total force of the rail on the wheel in track axes [N].
     pub force: [f64; 3],
+    /// Moment of the rail's forces on the wheel about the wheelset centre, track axes [N·m]:
+    /// Σ over the patches of position × force + the spin moment about the patch normal.
+    pub moment: [f64; 3],
+    /// Derailment quotient Y/Q [-]: Y the lateral force of the rail on the wheel, positive
+    /// towards the track centre (the flanging wheel's guiding force), over Q = −Fz, the
+    /// wheel's vertical force; 0 when Q ≤ [`YQ_MIN_LOAD`] (a lifted wheel).
+    pub derailment_quotient: f64,
     /// The wheel's downward displacement from nominal at which it carries its load [m].
     pub z: f64,
 }
@@ -569,7 +591,9 @@ struct Context<'a> {
 
 /// Stores a completed patch `result` with its `weight` in the next entry of `out.groups` and
 /// adds its weighted force — the tangential part `tangential` (track axes) and the normal force
-/// along −e_z — to `out.force`. Returns its weighted upward force on the wheel [N].
+/// along −e_z — to `out.force`, and its moment about the wheelset centre — that force at the
+/// patch's `position` and the spin moment `mz` about e_z — to `out.moment`. Returns its
+/// weighted upward force on the wheel [N].
 fn store_patch(
     sigma: f64,
     mut result: PatchResult,
@@ -580,6 +604,8 @@ fn store_patch(
     let (_, e_z) = kinematics::contact_axes(sigma, result.contact_angle);
     let total = (tangential - e_z * result.fn_) * weight;
     out.force = (Vector3::from(out.force) + total).into();
+    let moment = Vector3::from(result.position).cross(&total) + e_z * (result.mz * weight);
+    out.moment = (Vector3::from(out.moment) + moment).into();
     result.weight = weight;
     for v in [
         &mut result.fn_,
@@ -595,6 +621,17 @@ fn store_patch(
     out.n_groups += 1;
     // z points down: the upward force is −F_z.
     -total.z
+}
+
+/// Y/Q of the wheel on side `sigma` carrying the force `force` (track axes) [-]
+/// ([`SideResult::derailment_quotient`]): towards the track centre is −σ y.
+pub fn derailment_quotient(sigma: f64, force: [f64; 3]) -> f64 {
+    let (lateral, vertical) = (-sigma * force[1], -force[2]);
+    if vertical > YQ_MIN_LOAD {
+        lateral / vertical
+    } else {
+        0.0
+    }
 }
 
 fn solve_side(
@@ -643,6 +680,7 @@ fn solve_side(
         }
     }
     check_balance(side.name, load, out)?;
+    out.derailment_quotient = derailment_quotient(s, out.force);
     assign_slots(&mut side.slots, out);
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)

@@ -1,5 +1,6 @@
 //! Non-elliptic patches of one wheel: strips on each patch's contact plane, a strip normal model
-//! per patch, and the wheel's vertical position for a prescribed load (physics.md §5.1–§5.2).
+//! per patch, and the wheel's vertical position for a prescribed load (docs/theory.md §5.1–§5.2,
+//! §7.9).
 //!
 //! For a wheel lowered by dz from its nominal height:
 //! 1. **Layout** at the level L = touch + [`LAYOUT_FACTOR`] × (the multi-Hertzian approach): the
@@ -25,7 +26,7 @@
 use nalgebra::Vector3;
 
 use super::balance::{creep_passes, creep_upward};
-use super::kinematics::{creepages_at, tangential_in_axes, NonPlanar};
+use super::kinematics::{creepages_at, point_position, tangential_in_axes, NonPlanar};
 use super::{store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput};
 use crate::error::InputError;
 use crate::geometry::groups::{group_bounds, groups_at, MAX_GROUPS};
@@ -486,6 +487,7 @@ pub(super) fn strip_patch_result(
         length: summary.length,
         width: summary.width,
         y_rail: reference.y_rail,
+        position: point_position(side.sigma, &reference, input.yaw, input.roll).into(),
         contact_angle: gamma,
         rolling_radius: reference.rolling_radius,
         penetration: patch.approach(dz),

@@ -1,4 +1,4 @@
-"""Session fixtures and shared helpers for the host tests of the packed FMUs.
+"""Fixtures (one per test run) and shared helpers for the host tests of the packed FMUs.
 
 The FMUs are taken from ``$RAILCONTACT_FMU_DIR/<Model>.fmu`` when that variable is set, else
 from ``$CARGO_TARGET_DIR/fmu/<Model>.fmu`` when that one is (relative to the working directory,
@@ -118,7 +118,7 @@ def validated_description(path: Path) -> ModelDescription:
 
 
 def extracted(path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The FMU extracted once per session; every FMU2Slave of the session loads it from here."""
+    """The FMU extracted once per test run; every FMU2Slave of the run loads it from here."""
     target = tmp_path_factory.mktemp(f"{path.stem}_unzipped")
     return Path(fmpy.extract(str(path), unzipdir=str(target)))
 
@@ -158,7 +158,7 @@ def assert_exports_exactly_the_34_fmi2_functions(library: Path) -> None:
 
 
 def packed_fmu_fixtures(prefix: str, file_name: str):
-    """The session fixtures of one packed FMU, named ``{prefix}fmu_path`` (its path),
+    """The fixtures (one per test run) of one packed FMU, named ``{prefix}fmu_path`` (its path),
     ``{prefix}model_description``, ``{prefix}unzipdir`` (extracted once) and
     ``{prefix}shared_library`` (its linux64 library)."""
 

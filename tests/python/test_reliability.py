@@ -1,6 +1,6 @@
-"""Reliability of the packed FMUs in FMPy (issue 8; docs/reliability.md).
+"""Reliability of the packed FMUs in FMPy (docs/reliability.md).
 
-The user's acceptance checks, through FMPy and the FMUs' log (captured by FMPy's logger callback,
+The checks, through FMPy and the FMUs' log (captured by FMPy's logger callback,
 routed per instance by conftest.LOG):
 
 (a) NaN, ±∞, negative loads, out-of-range parameters, an unknown profile name and malformed profile

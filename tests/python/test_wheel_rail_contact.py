@@ -4,7 +4,7 @@ What is checked, in file order:
 
 1. packaging: `fmpy validate`, exactly the 34 `fmi2*` exports;
 2. the default experiment through `fmpy.simulate_fmu` with a lateral-shift input (built-in S1002 on
-   UIC60 at 1:40, 78.5 kN per wheel) and the Manchester benchmark (physics.md §8.5) through the
+   UIC60 at 1:40, 78.5 kN per wheel) and the Manchester benchmark (tests/data/README.md) through the
    FMU with the benchmark profile files;
 3. failures: a malformed profile file and an unknown built-in profile name fail initialization
    with fmi2Error and a log message; a pose off the rail makes fmi2DoStep return fmi2Discard with
@@ -174,7 +174,7 @@ def test_manchester_right_wheel_at_2mm_through_the_fmu(new_wrc) -> None:
     # Right wheel: railcontact's angle = −CONTACT's, yRail = +ycp (docs/conventions.md).
     assert slave.get("right.nPatches") == 1
     angle = dominant_angle(out)
-    # The issue's acceptance: contact angle within 0.01 rad, position on the rail within 1 mm.
+    # Required: contact angle within 0.01 rad, position on the rail within 1 mm.
     assert angle == pytest.approx(-ref["contact_angle_rad"], abs=0.01)
     assert out["right.p1.yRail"] * 1000.0 == pytest.approx(ref["ycp_rail_mm"], abs=1.0)
     assert out["right.Fz"] == pytest.approx(-1e4, rel=1e-6)
@@ -222,8 +222,9 @@ def test_unknown_builtin_profile_fails_initialization(new_wrc) -> None:
     assert "S9999" in text and "unknown built-in profile" in text, slave.messages
 
 
-# Poses off the rail. The first is the issue's; the second is one the model's own criterion (the
-# closest approach at a profile end) catches today, so the Discard mechanics are exercised too.
+# Poses off the rail. The first is far off the profiles; the second is one the model's own
+# criterion (the closest approach at a profile end) catches, so the Discard mechanics are
+# exercised too.
 OFF_RAIL_POSES = [
     pytest.param({"y": 0.045}, id="y=45mm"),
     pytest.param({"y": 0.05, "roll": -0.05}, id="y=50mm,roll=-0.05"),
@@ -417,7 +418,7 @@ NORMAL_MODELS = {2: "Linder", 3: "Kik-Piotrowski", 4: "STRIPES-B", 5: "STRIPES-A
 
 
 def _central_params(model: int) -> dict[str, float | int | str]:
-    """The seed's central case (reference/central/README): benchmark profiles, E = 210 GPa."""
+    """The central case (tests/data/README.md): benchmark profiles, E = 210 GPa."""
     return {
         "wheelProfile": str(data_file("profiles/MBench_S1002_v3.prw")),
         "railProfile": str(data_file("profiles/MBench_UIC60_v3.prr")),
@@ -430,7 +431,7 @@ def _central_params(model: int) -> dict[str, float | int | str]:
 
 @pytest.mark.parametrize("model", sorted(NORMAL_MODELS))
 def test_every_normal_model_runs_a_lateral_sweep_in_fmpy(new_wrc, model: int) -> None:
-    # The issue's acceptance: finite, positive area and pmax on shifts −1…+6 mm at 78.5 kN.
+    # Required: finite, positive area and pmax on shifts −1…+6 mm at 78.5 kN.
     slave = new_wrc(params=_central_params(model))
     for y_mm in np.arange(-1.0, 6.0 + 1e-9, 0.5):
         slave.set(y=y_mm / 1000.0)
@@ -452,8 +453,8 @@ def test_every_normal_model_runs_a_lateral_sweep_in_fmpy(new_wrc, model: int) ->
 
 
 def test_central_case_area_and_pmax_through_the_fmu(new_wrc) -> None:
-    # ANALYN (normalModel 6) against the exact theory, through the FMU: the issue's tolerances
-    # (area ±10 %, pmax ±15 %); reference/central/normal_dy0_summary.csv.
+    # ANALYN (normalModel 6) against the exact theory, through the FMU, within the
+    # required tolerances (area ±10 %, pmax ±15 %); reference/central/normal_dy0_summary.csv.
     with open(data_file("reference/central/normal_dy0_summary.csv"), newline="") as f:
         ref = next(csv.DictReader(f))
     slave = new_wrc(params=_central_params(6))
@@ -498,7 +499,7 @@ def test_tangential_options_through_the_fmu(new_wrc, tangential: int, planar: bo
 
 def test_pure_spin_through_the_fmu(new_wrc) -> None:
     # The recommended option (ANALYN, tangentialModel 1, planar patch) against the exact theory
-    # (reference/central/pure_spin_summary.csv): the issue's tolerances, Mz ±15 %, Fy ±10 %.
+    # (reference/central/pure_spin_summary.csv), within the required Mz ±15 %, Fy ±10 %.
     with open(data_file("reference/central/pure_spin_summary.csv"), newline="") as f:
         ref = next(csv.DictReader(f))
     params = _central_params(6) | {"planarPatch": True, "creepageMode": 2, "mu": 0.3}
@@ -519,3 +520,40 @@ def test_model_option_out_of_range_is_rejected_and_logged(new_wrc, variable: str
         slave.set(**{variable: value})
     message = rf"\b{variable} = {value} is outside the allowed range integer in \[1, {largest}\]"
     assert any(re.search(message, m.text) for m in slave.errors()), slave.messages
+
+
+def test_directional_derivatives_through_fmpy(new_wrc, wrc_model_description: ModelDescription) -> None:
+    """FMPy reads providesDirectionalDerivative and gets ∂(right.Fy)/∂y, ∂(right.Fy)/∂vy and
+    ∂(right.Fx)/∂omega at a tread pose within 2 % of its own central differences over fmi2DoStep
+    from a saved FMU state (steps 3× the FMU's own, docs/integration.md); the call leaves the
+    outputs and the next step as they were."""
+    assert wrc_model_description.coSimulation.providesDirectionalDerivative
+    pose = {"y": 0.002, "yaw": 5e-4, "vx": 20.0, "vy": 0.01, "omega": 20.0 / 0.46 * (1 + 3e-4)}
+    slave = new_wrc(inputs=pose, stop_time=1.0)
+    slave.run([pose, pose])
+    state = slave.fmu.getFMUstate()
+    t0 = slave.time
+    vr = slave.vars
+    at_save = bits(slave.output_array())
+    for output, knob, h in [("right.Fy", "y", 3e-5), ("right.Fy", "vy", 6e-5), ("right.Fx", "omega", 1.3e-4)]:
+        slave.fmu.setFMUstate(state)
+        slave.time = t0
+        (d,) = slave.fmu.getDirectionalDerivative([vr[output].valueReference], [vr[knob].valueReference], [1.0])
+        assert np.array_equal(bits(slave.output_array()), at_save)
+        sides = []
+        for x in (pose[knob] + h, pose[knob] - h):
+            slave.fmu.setFMUstate(state)
+            slave.time = t0
+            sides.append(slave.run([{knob: x}])[0][slave.output_names.index(output)])
+        host = (sides[0] - sides[1]) / (2 * h)
+        assert host != 0.0 and d == pytest.approx(host, rel=0.02), (output, knob, d, host)
+    # The next step after a derivative call is the one without it.
+    slave.fmu.setFMUstate(state)
+    slave.time = t0
+    plain = slave.run([pose])
+    slave.fmu.setFMUstate(state)
+    slave.time = t0
+    slave.fmu.getDirectionalDerivative([vr["left.Mz"].valueReference], [vr["yawRate"].valueReference], [1.0])
+    assert np.array_equal(bits(slave.run([pose])), bits(plain))
+    slave.fmu.freeFMUstate(state)
+    assert not slave.errors()

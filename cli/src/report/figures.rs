@@ -1,13 +1,14 @@
-//! The report's figures, each a [`Figure`] drawn from the model runs of [`super::study`] and the
-//! CONTACT data of [`super::reference`] (optional: without it the models are drawn alone):
+//! The report's figures, each a [`ReportFigure`] drawn from the model runs of [`super::study`]
+//! and the CONTACT data of [`super::reference`] (optional: without it the models are drawn
+//! alone):
 //!
 //! * [`Outlines`] — patch outlines (leading and trailing edge per strip, x against yRail) of every
-//!   normal model over CONTACT's (the seed's Fig. 2);
-//! * [`Pressure`] — the maximum pressure per strip along yRail (the seed's Fig. 3);
+//!   normal model over CONTACT's (as Sichani et al. 2014, Fig. 2);
+//! * [`Pressure`] — the maximum pressure per strip along yRail (as Sichani et al. 2014, Fig. 3);
 //! * [`Spin`] — |tangential traction| and slip elements in pure spin, one panel per model, planar
-//!   or non-planar patches (the seed's Fig. 4);
+//!   or non-planar patches (as Sichani et al. 2014, Fig. 4);
 //! * [`Shifts`] — outline, strip pressure and lateral curvature B of both STRIPES variants at
-//!   several lateral shifts (the seed's Fig. 5);
+//!   several lateral shifts (as Sichani et al. 2014, Fig. 5);
 //! * [`Creep`] — creep-force curves Fx(ξ), Fy(η) over μN per normal model and tangential option.
 //!
 //! Lateral axis: the right rail's `yRail` in mm, positive towards the field side (CONTACT's
@@ -132,6 +133,112 @@ fn model_entries(models: impl IntoIterator<Item = NormalModel>) -> Vec<LegendEnt
         .collect()
 }
 
+/// Legend: CONTACT's line (where the reference is drawn), then the model of each of `runs`.
+fn runs_legend(reference: Option<&Reference>, runs: &[NormalRun]) -> Vec<LegendEntry> {
+    let contact = reference.map(|_| LegendEntry::line(CONTACT, reference_look()));
+    let models = model_entries(runs.iter().map(|r| r.model));
+    contact.into_iter().chain(models).collect()
+}
+
+/// Draws the outline of every patch of `run` in its model's look.
+fn draw_outlines<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    run: &NormalRun,
+) -> Result<(), String> {
+    for strips in &run.patches {
+        outline(chart, &outline_points(strips), model_look(run.model))?;
+    }
+    Ok(())
+}
+
+/// Draws the strip maxima of every patch of `run` in `look`.
+fn draw_pressures<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    run: &NormalRun,
+    look: Look,
+) -> Result<(), String> {
+    for strips in &run.patches {
+        curve(chart, &pressure_points(strips), look)?;
+    }
+    Ok(())
+}
+
+/// Draws CONTACT's outline as a thin edge (over traction cells).
+fn draw_reference_edge<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    r: &Reference,
+) -> Result<(), String> {
+    outline(
+        chart,
+        &reference_outline(&r.strips),
+        Look::solid(REFERENCE_COLOUR, 1),
+    )
+}
+
+// ---------------------------------------------------------------------------------------------
+// The figures
+
+/// The report's figures: each one's file name, size and title, and its drawing below the title.
+pub enum ReportFigure<'a> {
+    Outlines(Outlines<'a>),
+    Pressure(Pressure<'a>),
+    Spin(Spin<'a>),
+    Shifts(Shifts<'a>),
+    Creep(Creep<'a>),
+}
+
+impl ReportFigure<'_> {
+    fn title(&self) -> String {
+        match self {
+            Self::Outlines(f) => format!("Contact patch outlines, {}", f.setup),
+            Self::Pressure(f) => format!("Maximum pressure per strip, {}", f.setup),
+            Self::Spin(f) => f.title(),
+            Self::Shifts(f) => format!(
+                "STRIPES-B and STRIPES-A&B over the lateral shift y of the wheelset, {}",
+                f.setup
+            ),
+            Self::Creep(f) => format!(
+                "Creep-force curves, planar patches, creepages prescribed, {}",
+                f.setup
+            ),
+        }
+    }
+}
+
+impl Figure for ReportFigure<'_> {
+    fn name(&self) -> &str {
+        match self {
+            Self::Outlines(_) => "patch_outlines",
+            Self::Pressure(_) => "pressure_per_strip",
+            Self::Spin(f) if f.planar => "pure_spin_planar",
+            Self::Spin(_) => "pure_spin_nonplanar",
+            Self::Shifts(_) => "lateral_shifts",
+            Self::Creep(_) => "creep_curves",
+        }
+    }
+
+    fn size(&self) -> (u32, u32) {
+        match self {
+            Self::Outlines(_) => (1350, 800),
+            Self::Pressure(_) => (1100, 680),
+            Self::Spin(_) => (1300, 1200),
+            Self::Shifts(_) => (1600, 1050),
+            Self::Creep(f) => (1300, 560 * f.rows.len().max(1) as u32 + TITLE_H),
+        }
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let area = title(root, &self.title(), TITLE_H)?;
+        match self {
+            Self::Outlines(f) => f.draw(&area),
+            Self::Pressure(f) => f.draw(&area),
+            Self::Spin(f) => f.draw(&area),
+            Self::Shifts(f) => f.draw(&area),
+            Self::Creep(f) => f.draw(&area),
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Patch outlines
 
@@ -142,27 +249,9 @@ pub struct Outlines<'a> {
     pub setup: String,
 }
 
-impl Figure for Outlines<'_> {
-    fn name(&self) -> &str {
-        "patch_outlines"
-    }
-
-    fn size(&self) -> (u32, u32) {
-        (1350, 800)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let rest = title(
-            root,
-            &format!("Contact patch outlines, {}", self.setup),
-            TITLE_H,
-        )?;
-        let mut entries = Vec::new();
-        if self.reference.is_some() {
-            entries.push(LegendEntry::line(CONTACT, reference_look()));
-        }
-        entries.extend(model_entries(self.runs.iter().map(|r| r.model)));
-        let panels = with_legend(&rest, &entries)?;
+impl Outlines<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let panels = with_legend(area, &runs_legend(self.reference, self.runs))?;
         let strips = self.reference.map(|r| r.strips.as_slice());
         let runs: Vec<&NormalRun> = self.runs.iter().collect();
         let axes = outline_axes(&runs, strips);
@@ -188,9 +277,7 @@ impl Figure for Outlines<'_> {
             if let Some(s) = strips {
                 draw_reference_outline(&mut chart, s)?;
             }
-            for strips in &run.patches {
-                outline(&mut chart, &outline_points(strips), model_look(run.model))?;
-            }
+            draw_outlines(&mut chart, run)?;
         }
         Ok(())
     }
@@ -208,26 +295,9 @@ pub struct Pressure<'a> {
     pub setup: String,
 }
 
-impl Figure for Pressure<'_> {
-    fn name(&self) -> &str {
-        "pressure_per_strip"
-    }
-
-    fn size(&self) -> (u32, u32) {
-        (1100, 680)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let rest = title(
-            root,
-            &format!("Maximum pressure per strip, {}", self.setup),
-            TITLE_H,
-        )?;
-        let mut entries = Vec::new();
-        if self.reference.is_some() {
-            entries.push(LegendEntry::line(CONTACT, reference_look()));
-        }
-        entries.extend(model_entries(self.runs.iter().map(|r| r.model)));
+impl Pressure<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let mut entries = runs_legend(self.reference, self.runs);
         if let Some(run) = self.unsmoothed {
             entries.push(LegendEntry::line(
                 format!(
@@ -237,7 +307,7 @@ impl Figure for Pressure<'_> {
                 unsmoothed_look(run.model),
             ));
         }
-        let area = with_legend(&rest, &entries)?;
+        let area = with_legend(area, &entries)?;
         let strips = self.reference.map(|r| r.strips.as_slice());
         let mut ys = Vec::new();
         let mut ps = vec![0.0];
@@ -269,18 +339,10 @@ impl Figure for Pressure<'_> {
             )?;
         }
         for run in self.runs {
-            for patch in &run.patches {
-                curve(&mut chart, &pressure_points(patch), model_look(run.model))?;
-            }
+            draw_pressures(&mut chart, run, model_look(run.model))?;
         }
         if let Some(run) = self.unsmoothed {
-            for patch in &run.patches {
-                curve(
-                    &mut chart,
-                    &pressure_points(patch),
-                    unsmoothed_look(run.model),
-                )?;
-            }
+            draw_pressures(&mut chart, run, unsmoothed_look(run.model))?;
         }
         Ok(())
     }
@@ -483,20 +545,8 @@ fn draw_arrows<DB: DrawingBackend>(
     Ok(())
 }
 
-impl Figure for Spin<'_> {
-    fn name(&self) -> &str {
-        if self.planar {
-            "pure_spin_planar"
-        } else {
-            "pure_spin_nonplanar"
-        }
-    }
-
-    fn size(&self) -> (u32, u32) {
-        (1300, 1200)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+impl Spin<'_> {
+    fn title(&self) -> String {
         let mode = if self.planar {
             "planar patches (planarPatch = true)"
         } else {
@@ -507,11 +557,10 @@ impl Figure for Spin<'_> {
             .iter()
             .find(|r| r.model != NormalModel::Hertz)
             .map_or_else(String::new, |r| format!(", {}", option_label(r.tangential)));
-        let rest = title(
-            root,
-            &format!("Pure spin φ = 0.052 rad/m (ξ = η = 0 prescribed), {mode}{option}"),
-            TITLE_H,
-        )?;
+        format!("Pure spin φ = 0.052 rad/m (ξ = η = 0 prescribed), {mode}{option}")
+    }
+
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let mut entries = vec![
             LegendEntry::line(
                 "slip element",
@@ -529,7 +578,7 @@ impl Figure for Spin<'_> {
             ));
         }
         entries.extend(model_entries(self.runs.iter().map(|r| r.model)));
-        let panels = with_legend(&rest, &entries)?;
+        let panels = with_legend(area, &entries)?;
         let areas = panels.split_evenly((4, 2));
         let mut slots = areas.iter();
         let caption = |name: &str, fx: f64, fy: f64, mz: f64, slip: f64| {
@@ -552,11 +601,7 @@ impl Figure for Spin<'_> {
             let cells = reference_cells(r);
             draw_cells(&mut chart, &cells, self.scale_mpa)?;
             draw_arrows(&mut chart, &cells, self.scale_mpa)?;
-            outline(
-                &mut chart,
-                &reference_outline(&r.strips),
-                Look::solid(REFERENCE_COLOUR, 1),
-            )?;
+            draw_reference_edge(&mut chart, r)?;
             draw_slip(&mut chart, &cells)?;
         }
         for run in self.runs {
@@ -574,15 +619,9 @@ impl Figure for Spin<'_> {
             draw_cells(&mut chart, &run.cells, self.scale_mpa)?;
             draw_arrows(&mut chart, &run.cells, self.scale_mpa)?;
             if let Some(r) = self.reference {
-                outline(
-                    &mut chart,
-                    &reference_outline(&r.strips),
-                    Look::solid(REFERENCE_COLOUR, 1),
-                )?;
+                draw_reference_edge(&mut chart, r)?;
             }
-            for strips in &run.normal.patches {
-                outline(&mut chart, &outline_points(strips), model_look(run.model))?;
-            }
+            draw_outlines(&mut chart, &run.normal)?;
             draw_slip(&mut chart, &run.cells)?;
         }
         if let Some(area) = slots.next() {
@@ -641,24 +680,8 @@ pub struct Shifts<'a> {
     pub setup: String,
 }
 
-impl Figure for Shifts<'_> {
-    fn name(&self) -> &str {
-        "lateral_shifts"
-    }
-
-    fn size(&self) -> (u32, u32) {
-        (1600, 1050)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let rest = title(
-            root,
-            &format!(
-                "STRIPES-B and STRIPES-A&B over the lateral shift y of the wheelset, {}",
-                self.setup
-            ),
-            TITLE_H,
-        )?;
+impl Shifts<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let mut models: Vec<NormalModel> = Vec::new();
         for run in self.shifts.iter().flat_map(|s| &s.runs) {
             if !models.contains(&run.model) {
@@ -677,7 +700,7 @@ impl Figure for Shifts<'_> {
             "B of the geometry (before the models' rules)",
             Look::solid(AUX_COLOUR, 2).with(LineKind::Dashed, Marker::None),
         ));
-        let panels = with_legend(&rest, &entries)?;
+        let panels = with_legend(area, &entries)?;
         let cols = self.shifts.len().max(1);
         let areas = panels.split_evenly((3, cols));
         for (c, shift) in self.shifts.iter().enumerate() {
@@ -694,9 +717,7 @@ impl Figure for Shifts<'_> {
                 draw_reference_outline(&mut chart, s)?;
             }
             for run in &shift.runs {
-                for strips in &run.patches {
-                    outline(&mut chart, &outline_points(strips), model_look(run.model))?;
-                }
+                draw_outlines(&mut chart, run)?;
             }
             // Row 2: strip maxima.
             let p_max = shift
@@ -713,9 +734,7 @@ impl Figure for Shifts<'_> {
                 curve(&mut chart, &reference_pressure(s), reference_look())?;
             }
             for run in &shift.runs {
-                for strips in &run.patches {
-                    curve(&mut chart, &pressure_points(strips), model_look(run.model))?;
-                }
+                draw_pressures(&mut chart, run, model_look(run.model))?;
             }
             // Row 3: lateral curvature.
             let b_values = shift
@@ -798,26 +817,10 @@ fn creep_label(c: &CreepCurve, by_option: bool) -> String {
     }
 }
 
-impl Figure for Creep<'_> {
-    fn name(&self) -> &str {
-        "creep_curves"
-    }
-
-    fn size(&self) -> (u32, u32) {
-        (1300, 560 * self.rows.len().max(1) as u32 + TITLE_H)
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let rest = title(
-            root,
-            &format!(
-                "Creep-force curves, planar patches, creepages prescribed, {}",
-                self.setup
-            ),
-            TITLE_H,
-        )?;
+impl Creep<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let n = self.rows.len().max(1);
-        for ((name, curves), row) in self.rows.iter().zip(rest.split_evenly((n, 1))) {
+        for ((name, curves), row) in self.rows.iter().zip(area.split_evenly((n, 1))) {
             let by_option = compares_options(curves);
             let mut entries = Vec::new();
             if self.reference.is_some() {

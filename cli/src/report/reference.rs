@@ -1,4 +1,4 @@
-//! The CONTACT reference solutions of the seed's central case, read from
+//! The CONTACT reference solutions of the central case (tests/data/README.md), read from
 //! `<reference>/central/*.csv` (described in the reference directory's README.md).
 //!
 //! Units stay CONTACT's (mm, N, N·mm, MPa, 1/mm) in the file-level structs; the names say which.
@@ -25,6 +25,11 @@ impl Table {
     fn read(path: &Path) -> Result<Self, String> {
         let text = std::fs::read_to_string(path)
             .map_err(|e| format!("{}: cannot read the reference file: {e}", path.display()))?;
+        Self::parse(path, &text)
+    }
+
+    /// The table in `text`, read from `path` (named in the messages).
+    fn parse(path: &Path, text: &str) -> Result<Self, String> {
         let mut lines = text
             .lines()
             .enumerate()
@@ -128,6 +133,18 @@ pub struct SpinSummary {
     pub fs_n: f64,
     pub mn_nmm: f64,
     pub adhesion_fraction: f64,
+}
+
+impl SpinSummary {
+    /// The spin moment [N·m].
+    pub fn mz_nm(&self) -> f64 {
+        self.mn_nmm * 1e-3
+    }
+
+    /// The slipping share of the patch [%].
+    pub fn slip_share(&self) -> f64 {
+        100.0 * (1.0 - self.adhesion_fraction)
+    }
 }
 
 /// One element of `pure_spin_traction_grid.csv`.
@@ -297,18 +314,9 @@ fn read_creep(t: &Table) -> Result<Vec<RefCreep>, String> {
 mod tests {
     use super::*;
 
-    fn temp_csv(name: &str, text: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("railcontact-ref-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let p = dir.join(name);
-        std::fs::write(&p, text).unwrap();
-        p
-    }
-
     #[test]
     fn bad_values_name_file_line_and_column() {
-        let p = temp_csv("bad.csv", "a,b\n1,2\n3,x\n");
-        let t = Table::read(&p).unwrap();
+        let t = Table::parse(Path::new("bad.csv"), "a,b\n1,2\n3,x\n").unwrap();
         assert_eq!(t.number(0, "b").unwrap(), 2.0);
         let e = t.number(1, "b").unwrap_err();
         assert!(
@@ -317,8 +325,8 @@ mod tests {
         );
         let e = t.number(0, "c").unwrap_err();
         assert!(e.contains("no column 'c'"), "{e}");
-        let p = temp_csv("short.csv", "a,b\n1\n");
-        let e = Table::read(&p).unwrap().number(0, "b").unwrap_err();
+        let short = Table::parse(Path::new("short.csv"), "a,b\n1\n").unwrap();
+        let e = short.number(0, "b").unwrap_err();
         assert!(e.contains("line 2") && e.contains("missing field"), "{e}");
     }
 

@@ -43,6 +43,16 @@ pub struct ErrorRow {
 }
 
 impl ErrorRow {
+    /// The row with its `error` in `error_unit`, printed with `error_decimals`.
+    fn error(self, error: f64, error_unit: &'static str, error_decimals: usize) -> Self {
+        Self {
+            error,
+            error_unit,
+            error_decimals,
+            ..self
+        }
+    }
+
     fn csv(&self) -> String {
         format!(
             "{},{},{},{},{},{},{:.*},{},{:.*},{}",
@@ -62,6 +72,20 @@ impl ErrorRow {
             self.error,
             self.error_unit
         )
+    }
+
+    /// Whether `other` is a row of the same case and model run.
+    fn same_run(&self, other: &ErrorRow) -> bool {
+        self.case == other.case
+            && self.model == other.model
+            && self.tangential == other.tangential
+            && self.planar == other.planar
+    }
+
+    /// The tangential option's label ("FASTSIM on the ellipse" for the Hertz rows).
+    fn option_text(&self) -> String {
+        self.tangential
+            .map_or("FASTSIM on the ellipse".to_string(), option_label)
     }
 
     fn value_text(&self) -> String {
@@ -105,54 +129,73 @@ pub fn strip_pmax_rms(profile: &[(f64, f64)], reference: &[RefStrip]) -> f64 {
     (sum / reference.len() as f64).sqrt()
 }
 
-/// Rows of the central normal case.
-pub fn central_rows(runs: &[NormalRun], r: &Reference) -> Vec<ErrorRow> {
-    let mut rows = Vec::new();
-    for run in runs {
-        let area = run.totals.area * 1e6;
-        let pmax = run.totals.pmax * 1e-6;
-        let rms = strip_pmax_rms(&run.profile, &r.strips);
-        let row = |quantity, unit, decimals, value, reference: f64, error, error_unit| ErrorRow {
-            case: "central",
-            model: run.model,
-            tangential: None,
-            planar: None,
+/// What a row of the error table is about: the case and the model run.
+#[derive(Debug, Clone, Copy)]
+struct Subject {
+    case: &'static str,
+    model: NormalModel,
+    tangential: Option<TangentialModel>,
+    planar: Option<bool>,
+}
+
+impl Subject {
+    /// A row of `quantity` [`unit`], the model's `value` against CONTACT's `reference`, both
+    /// printed with `decimals`; the error is set by [`ErrorRow::error`].
+    fn row(
+        self,
+        quantity: &'static str,
+        unit: &'static str,
+        decimals: usize,
+        value: f64,
+        reference: Option<f64>,
+    ) -> ErrorRow {
+        ErrorRow {
+            case: self.case,
+            model: self.model,
+            tangential: self.tangential,
+            planar: self.planar,
             quantity,
             unit,
             decimals,
             value,
-            reference: Some(reference),
-            error,
-            error_unit,
-            error_decimals: 2,
+            reference,
+            error: 0.0,
+            error_unit: "",
+            error_decimals: 0,
+        }
+    }
+}
+
+/// Rows of the central normal case.
+pub fn central_rows(runs: &[NormalRun], r: &Reference) -> Vec<ErrorRow> {
+    let (area_ref, pmax_ref) = (r.normal.area_mm2, r.normal.pmax_mpa);
+    let mut rows = Vec::new();
+    for run in runs {
+        let subject = Subject {
+            case: "central",
+            model: run.model,
+            tangential: None,
+            planar: None,
         };
-        rows.push(row(
-            "area",
-            "mm2",
-            2,
-            area,
-            r.normal.area_mm2,
-            relative(area, r.normal.area_mm2),
-            "%",
-        ));
-        rows.push(row(
-            "pmax",
-            "MPa",
-            2,
-            pmax,
-            r.normal.pmax_mpa,
-            relative(pmax, r.normal.pmax_mpa),
-            "%",
-        ));
-        rows.push(row(
-            "strip_pmax_rms",
-            "MPa",
-            2,
-            rms,
-            r.normal.pmax_mpa,
-            100.0 * rms / r.normal.pmax_mpa,
-            "% of pmax_ref",
-        ));
+        let area = run.totals.area * 1e6;
+        let pmax = run.totals.pmax * 1e-6;
+        let rms = strip_pmax_rms(&run.profile, &r.strips);
+        let rms_share = 100.0 * rms / pmax_ref;
+        for (quantity, unit, value, reference, error, error_unit) in [
+            ("area", "mm2", area, area_ref, relative(area, area_ref), "%"),
+            ("pmax", "MPa", pmax, pmax_ref, relative(pmax, pmax_ref), "%"),
+            (
+                "strip_pmax_rms",
+                "MPa",
+                rms,
+                pmax_ref,
+                rms_share,
+                "% of pmax_ref",
+            ),
+        ] {
+            let row = subject.row(quantity, unit, 2, value, Some(reference));
+            rows.push(row.error(error, error_unit, 2));
+        }
     }
     rows
 }
@@ -162,53 +205,38 @@ pub fn spin_rows(runs: &[SpinRun], r: &Reference) -> Vec<ErrorRow> {
     let s = &r.spin;
     let mut rows = Vec::new();
     for run in runs {
-        let t = &run.normal.totals;
-        let (tangential, planar) = if run.model == NormalModel::Hertz {
-            (None, None)
-        } else {
-            (Some(run.tangential), Some(run.planar))
-        };
         if run.model == NormalModel::Hertz && !run.planar {
             // Hertz patches are always planar: the same numbers as the planar row.
             continue;
         }
-        let row = |quantity, unit, decimals, value, reference, error, error_unit| ErrorRow {
+        let t = &run.normal.totals;
+        let subject = Subject {
             case: "pure_spin",
             model: run.model,
-            tangential,
-            planar,
-            quantity,
-            unit,
-            decimals,
-            value,
-            reference: Some(reference),
-            error,
-            error_unit,
-            error_decimals: if error_unit == "%" { 2 } else { 1 },
+            tangential: (run.model != NormalModel::Hertz).then_some(run.tangential),
+            planar: (run.model != NormalModel::Hertz).then_some(run.planar),
         };
-        rows.push(row("Fx", "N", 1, t.fx, s.fx_n, t.fx - s.fx_n, "N"));
-        rows.push(row("Fy", "N", 1, t.fy, s.fs_n, relative(t.fy, s.fs_n), "%"));
-        let mz_ref = s.mn_nmm * 1e-3;
-        rows.push(row(
-            "Mz",
-            "N.m",
-            3,
-            t.mz,
-            mz_ref,
-            relative(t.mz, mz_ref),
-            "%",
-        ));
+        let mz_ref = s.mz_nm();
         let slip = 100.0 * (1.0 - t.adhesion);
-        let slip_ref = 100.0 * (1.0 - s.adhesion_fraction);
-        rows.push(row(
-            "slip_share",
-            "%",
-            2,
-            slip,
-            slip_ref,
-            slip - slip_ref,
-            "percentage points",
-        ));
+        let slip_ref = s.slip_share();
+        for (quantity, unit, decimals, value, reference, error, error_unit) in [
+            ("Fx", "N", 1, t.fx, s.fx_n, t.fx - s.fx_n, "N"),
+            ("Fy", "N", 1, t.fy, s.fs_n, relative(t.fy, s.fs_n), "%"),
+            ("Mz", "N.m", 3, t.mz, mz_ref, relative(t.mz, mz_ref), "%"),
+            (
+                "slip_share",
+                "%",
+                2,
+                slip,
+                slip_ref,
+                slip - slip_ref,
+                "percentage points",
+            ),
+        ] {
+            let error_decimals = if error_unit == "%" { 2 } else { 1 };
+            let row = subject.row(quantity, unit, decimals, value, Some(reference));
+            rows.push(row.error(error, error_unit, error_decimals));
+        }
     }
     rows
 }
@@ -254,22 +282,15 @@ pub fn creep_rows(
             ..Options::normal(c.model)
         };
         let (worst, mean) = creep_errors(study, options, &r.creep)?;
-        let tangential = (c.model != NormalModel::Hertz).then_some(c.tangential);
+        let subject = Subject {
+            case: "creep_curves",
+            model: c.model,
+            tangential: (c.model != NormalModel::Hertz).then_some(c.tangential),
+            planar: Some(true),
+        };
         for (quantity, value) in [("worst_abs_error", worst), ("mean_abs_error", mean)] {
-            rows.push(ErrorRow {
-                case: "creep_curves",
-                model: c.model,
-                tangential,
-                planar: Some(true),
-                quantity,
-                unit: "muN",
-                decimals: 4,
-                value,
-                reference: None,
-                error: value,
-                error_unit: "muN",
-                error_decimals: 4,
-            });
+            let row = subject.row(quantity, "muN", 4, value, None);
+            rows.push(row.error(value, "muN", 4));
         }
     }
     Ok(rows)
@@ -286,32 +307,37 @@ pub fn csv(rows: &[ErrorRow]) -> String {
     out
 }
 
-fn find<'a>(
+/// Per model run of `case` (in the rows' order), its rows of `quantities`; runs missing one are
+/// left out.
+fn runs_of<'a, const N: usize>(
     rows: &'a [ErrorRow],
-    case: &str,
-    model: NormalModel,
-    tangential: Option<TangentialModel>,
-    planar: Option<bool>,
-    quantity: &str,
-) -> Option<&'a ErrorRow> {
-    rows.iter().find(|r| {
-        r.case == case
-            && r.model == model
-            && r.tangential == tangential
-            && r.planar == planar
-            && r.quantity == quantity
-    })
+    case: &'a str,
+    quantities: [&'a str; N],
+) -> impl Iterator<Item = [&'a ErrorRow; N]> + 'a {
+    rows.iter()
+        .filter(move |row| row.case == case && row.quantity == quantities[0])
+        .filter_map(move |first| {
+            let of_run: Option<Vec<&ErrorRow>> = quantities
+                .iter()
+                .map(|&q| rows.iter().find(|r| r.same_run(first) && r.quantity == q))
+                .collect();
+            of_run?.try_into().ok()
+        })
+}
+
+/// Fx [N], Fy [N], Mz [N·m] and the slip share [%] as the pure-spin tables print them.
+pub fn spin_cells(fx: f64, fy: f64, mz: f64, slip_share: f64) -> [String; 4] {
+    [
+        format!("{fx:.1}"),
+        format!("{fy:.1}"),
+        format!("{mz:.3}"),
+        format!("{slip_share:.2} %"),
+    ]
 }
 
 /// The error tables as markdown.
 pub fn markdown(rows: &[ErrorRow], r: &Reference) -> String {
     let mut out = String::new();
-    let mut models: Vec<NormalModel> = Vec::new();
-    for row in rows.iter().filter(|row| row.case == "central") {
-        if !models.contains(&row.model) {
-            models.push(row.model);
-        }
-    }
     let _ = writeln!(out, "### Central case, normal contact\n");
     let _ = writeln!(
         out,
@@ -323,21 +349,18 @@ pub fn markdown(rows: &[ErrorRow], r: &Reference) -> String {
         "| CONTACT (exact) | {:.2} | | {:.2} | | | |",
         r.normal.area_mm2, r.normal.pmax_mpa
     );
-    for &m in &models {
-        let get = |q| find(rows, "central", m, None, None, q);
-        if let (Some(a), Some(p), Some(s)) = (get("area"), get("pmax"), get("strip_pmax_rms")) {
-            let _ = writeln!(
-                out,
-                "| {} | {} | {} | {} | {} | {} | {:.1} % |",
-                model_label(m),
-                a.value_text(),
-                a.error_text(),
-                p.value_text(),
-                p.error_text(),
-                s.value_text(),
-                s.error
-            );
-        }
+    for [a, p, s] in runs_of(rows, "central", ["area", "pmax", "strip_pmax_rms"]) {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} | {:.1} % |",
+            model_label(a.model),
+            a.value_text(),
+            a.error_text(),
+            p.value_text(),
+            p.error_text(),
+            s.value_text(),
+            s.error
+        );
     }
 
     let _ = writeln!(
@@ -350,35 +373,25 @@ pub fn markdown(rows: &[ErrorRow], r: &Reference) -> String {
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
     let s = &r.spin;
+    let [fx, fy, mz, slip] = spin_cells(s.fx_n, s.fs_n, s.mz_nm(), s.slip_share());
     let _ = writeln!(
         out,
-        "| CONTACT (exact) | | yes | {:.1} | {:.1} | | {:.3} | | {:.2} % |",
-        s.fx_n,
-        s.fs_n,
-        s.mn_nmm * 1e-3,
-        100.0 * (1.0 - s.adhesion_fraction)
+        "| CONTACT (exact) | | yes | {fx} | {fy} | | {mz} | | {slip} |"
     );
-    for row in rows
-        .iter()
-        .filter(|row| row.case == "pure_spin" && row.quantity == "Fx")
-    {
-        let get = |q| find(rows, "pure_spin", row.model, row.tangential, row.planar, q);
-        if let (Some(fy), Some(mz), Some(slip)) = (get("Fy"), get("Mz"), get("slip_share")) {
-            let _ = writeln!(
-                out,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} % |",
-                model_label(row.model),
-                row.tangential
-                    .map_or("FASTSIM on the ellipse".to_string(), option_label),
-                row.planar.map_or("yes", |p| if p { "yes" } else { "no" }),
-                row.value_text(),
-                fy.value_text(),
-                fy.error_text(),
-                mz.value_text(),
-                mz.error_text(),
-                slip.value_text()
-            );
-        }
+    for [fx, fy, mz, slip] in runs_of(rows, "pure_spin", ["Fx", "Fy", "Mz", "slip_share"]) {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} % |",
+            model_label(fx.model),
+            fx.option_text(),
+            fx.planar.map_or("yes", |p| if p { "yes" } else { "no" }),
+            fx.value_text(),
+            fy.value_text(),
+            fy.error_text(),
+            mz.value_text(),
+            mz.error_text(),
+            slip.value_text()
+        );
     }
 
     let _ = writeln!(
@@ -387,28 +400,16 @@ pub fn markdown(rows: &[ErrorRow], r: &Reference) -> String {
     );
     let _ = writeln!(out, "| model | tangential option | worst | mean |");
     let _ = writeln!(out, "|---|---|---|---|");
-    for row in rows
-        .iter()
-        .filter(|row| row.case == "creep_curves" && row.quantity == "worst_abs_error")
-    {
-        if let Some(mean) = find(
-            rows,
-            "creep_curves",
-            row.model,
-            row.tangential,
-            row.planar,
-            "mean_abs_error",
-        ) {
-            let _ = writeln!(
-                out,
-                "| {} | {} | {} | {} |",
-                model_label(row.model),
-                row.tangential
-                    .map_or("FASTSIM on the ellipse".to_string(), option_label),
-                row.value_text(),
-                mean.value_text()
-            );
-        }
+    let creep = ["worst_abs_error", "mean_abs_error"];
+    for [worst, mean] in runs_of(rows, "creep_curves", creep) {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} |",
+            model_label(worst.model),
+            worst.option_text(),
+            worst.value_text(),
+            mean.value_text()
+        );
     }
     out
 }

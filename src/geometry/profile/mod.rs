@@ -1,11 +1,11 @@
 //! Wheel and rail profiles: built-in S1002 and UIC60/60E1, Simpack / MiniProf / CSV readers, and
 //! a smoothing cubic spline z(y) with first and second derivatives.
 //!
-//! Sources: physics.md §8 (S1002 polynomials, UIC60 head, Simpack format, benchmark files);
-//! Reinsch (1967) for the smoothing spline. Details and limits in the submodules:
-//! [`spline`] (fit, smoothing length, evaluation), [`s1002`], [`uic60`], [`parse`], [`checks`]
-//! (plausibility of profiles read from files: units, wheel orientation, coverage, gaps, steps
-//! and spikes).
+//! Sources: docs/theory.md §7.1–§7.4 (S1002, UIC60 head, profile files), tests/data/README.md
+//! (benchmark files); Reinsch (1967) for the smoothing spline. Details and limits in the
+//! submodules: [`spline`] (fit, smoothing length, evaluation), [`s1002`], [`uic60`], [`parse`],
+//! [`checks`] (plausibility of profiles read from files: units, wheel orientation, coverage, gaps,
+//! steps and spikes).
 //!
 //! # The profile frame (fixed; `docs/conventions.md`)
 //!
@@ -628,8 +628,8 @@ mod tests {
     /// Built-in S1002 through the spline against the analytic F. Measured: 9.8e−5 mm next to
     /// s = −35, where the published coefficients leave a 1.2e−4 mm jump that the C² spline must
     /// bridge (tolerance 1.5e−4 mm); 1.2e−8 mm and 1.2e−6 in slope more than 1 mm from every joint
-    /// and the flange back (tolerances 1e−6 mm and 1e−5). Then physics.md §8.1's checks through
-    /// the Profile API.
+    /// and the flange back (tolerances 1e−6 mm and 1e−5). Then the checks of docs/theory.md §7.2
+    /// through the Profile API.
     #[test]
     fn builtin_s1002_matches_the_analytic_profile() {
         let p = Profile::builtin("s1002").unwrap();

@@ -1,8 +1,8 @@
 //! Readers for profile files: Simpack `.prr`/`.prw`, MiniProf-style text `.ban`, and plain
 //! two-column text/CSV.
 //!
-//! Sources: physics.md §8.4 (what is known of the Simpack format), the three benchmark files in
-//! `shared/profiles/` (layouts as found), `shared/profiles/README.md`.
+//! Sources: docs/theory.md §7.4 (what is known of the Simpack format), the three benchmark files in
+//! `tests/data/profiles/` (layouts as found), `tests/data/README.md`.
 //!
 //! Every reader returns the points in **metres, in the file's order, after the file's own
 //! transformations**, each with the line it came from; [`Profile`](super::Profile) then checks
@@ -20,14 +20,14 @@
 //!
 //! * header `type` = 0 rail / 1 wheel (`type` inside the spline block is the original data file
 //!   type and is ignored); `version` ignored;
-//! * applied in Simpack's numbering order [U — the order is inferred from the numbering]:
+//! * applied in Simpack's numbering order (our inference from the numbering):
 //!   1 `point.dist.min` (drop a point closer than this to the last kept one; 0 = off),
 //!   2 `shift.y`, `shift.z` (added), 3 `rotate` (must be 0: its sign convention is undocumented,
 //!   a non-zero value is refused rather than guessed), 4 `bound.y.min/max`, `bound.z.min/max`
 //!   (points outside are dropped; only when min < max — the benchmark files have min > max,
 //!   which means "no bounds"), 5 `mirror.y`, `mirror.z` (0/1: y → −y, z → −z), 6 `inversion`
 //!   (0/1: reverse the point order), 7 `units.len.f` (file units per metre; 1000 = mm; if absent,
-//!   `units.len` = 'm' | 'cm' | 'mm' is used, else mm is assumed [U]);
+//!   `units.len` = 'm' | 'cm' | 'mm' is used, else mm is assumed);
 //! * `approx.smooth` is ignored (as CONTACT does): smoothing is the caller's parameter;
 //!   `units.ang.f`, `units.ang`, `file`, `file.mtime`, `comment` are ignored.
 //!
@@ -38,9 +38,9 @@
 //!
 //! `Key=Value` header lines, then one row per point, `X<TAB>Y` in mm; rows may start with a `"`
 //! (in the benchmark file the first 11 and last 8 rows — the near-vertical ends of the flanks —
-//! carry it; its meaning is undocumented [U], the mark is stripped and the point kept, which makes
-//! the file identical to `MBench_UIC60_v3.prr`). Orientation, inferred from that pair of files
-//! [U]: X points to the **gauge** side and Y downwards, so y = −X, z = Y. `XYPoints`, when
+//! carry it; its meaning is undocumented; the mark is stripped and the point kept, which makes
+//! the file identical to `MBench_UIC60_v3.prr`). Orientation, inferred from that pair of files:
+//! X points to the **gauge** side and Y downwards, so y = −X, z = Y. `XYPoints`, when
 //! present, must equal the number of rows; `ColumnDef` must be `X,Y`; non-zero `XOffset`,
 //! `YOffset`, `Tilt`, `BaseTilt`, `BaseOffset` are refused (meaning undocumented). Real MiniProf
 //! `.ban` files are binary: they are refused as such (NUL byte).

@@ -1,8 +1,8 @@
 //! The S1002 wheel profile (EN 13715 / UIC 510-2), analytic, and its sampling for the built-in
 //! [`Profile`](super::Profile) "S1002".
 //!
-//! Source: physics.md §8.1 (EN 13715 polynomial and circle sections A–H with all coefficients;
-//! the checks quoted there are this module's tests). Written from the equations; the widely copied
+//! Source: EN 13715 (docs/theory.md §7.2: polynomial and circle sections A–H, all coefficients
+//! below; its checks are this module's tests). Written from the equations; the widely copied
 //! "courtesy H. Netter, DLR" teaching function was used for cross-checking only.
 //!
 //! s [mm] is measured from the taping line, positive towards the field side (the flange is at
@@ -91,7 +91,7 @@ pub const JOINTS_MM: [f64; 7] = [
     -62.764_705_882,
 ];
 /// Arc-length step of the built-in sampling [mm] (interpolation error ~h⁴/384·F'''' ≪ 1 µm on the
-/// tread; 0.1 mm is also the element size of the benchmark computations, physics.md §8.5).
+/// tread; 0.1 mm is also the element size of the benchmark computations, tests/data/README.md).
 pub const SAMPLE_ARC_STEP_MM: f64 = 0.1;
 /// Smallest lateral step of the built-in sampling [mm], reached only at the vertical flange back.
 pub const MIN_SAMPLE_DY_MM: f64 = 1e-3;
@@ -195,7 +195,7 @@ mod tests {
         bisect(a, b, 0.0, |m| (f(m)[0] - level > 0.0) == above_at_a)
     }
 
-    /// physics.md §8.1: F(0) = 0, F'(0) = −0.03359, F''(0) = 3.13e−3 1/mm (quoted to 4 and 3
+    /// docs/theory.md §7.2: F(0) = 0, F'(0) = −0.03359, F''(0) = 3.13e−3 1/mm (quoted to 4 and 3
     /// significant digits: tolerances half a unit of the last quoted digit).
     #[test]
     fn taping_line_values() {
@@ -238,9 +238,9 @@ mod tests {
         assert!((s10 - S_FLANGE_BACK_MM - 32.5).abs() < 1e-6);
     }
 
-    /// Joints: value and slope jumps from coefficient rounding (physics.md §8.1: 1.2e−4 mm at −35,
-    /// 3.6e−5 mm at −26). Measured: 1.18e−4 and 3.65e−5 mm, slope jumps 7.7e−6 and 3.2e−6; every
-    /// other joint < 1e−7 mm and < 1e−8 in slope. Tolerances just above the measured values.
+    /// Joints: value and slope jumps from coefficient rounding (docs/theory.md §7.2: 1.2e−4 mm at
+    /// −35, 3.6e−5 mm at −26). Measured: 1.18e−4 and 3.65e−5 mm, slope jumps 7.7e−6 and 3.2e−6;
+    /// every other joint < 1e−7 mm and < 1e−8 in slope. Tolerances just above the measured values.
     #[test]
     fn continuity_at_every_joint() {
         for (k, &j) in JOINTS_MM.iter().enumerate() {

@@ -1,9 +1,9 @@
 //! The UIC60 / 60E1 rail head (EN 13674-1), built from tangent arcs and flanks, and its sampling
 //! for the built-in [`Profile`](super::Profile) "UIC60" / "60E1".
 //!
-//! Source: physics.md §8.2 — nominal head radii R300 (crown) – R80 – R13 (gauge corner), flanks
-//! 1:20, head width 72 mm measured 14 mm below the top [E]; the junction positions are a
-//! reconstruction [R] (the EN drawing was not at hand).
+//! Source: EN 13674-1 (docs/theory.md §7.3) — nominal head radii R300 (crown) – R80 – R13 (gauge
+//! corner), flanks 1:20, head width 72 mm measured 14 mm below the top; the junction positions are
+//! a construction of ours (the EN drawing was not at hand).
 //!
 //! # Construction (mm, origin at the crown top of the un-inclined rail, y lateral, z down; the
 //! head is symmetric about y = 0 — the right half is described)
@@ -21,13 +21,13 @@
 //! 0 mm⁻¹), as on the real rail. α₂ is the one free parameter left: it is solved (bisection) so
 //! that the head is **72.000 mm** wide at 14 mm below the top. The result: R80 ends at
 //! |y| = 26.01 mm (z = 2.26), c₁₃ = (±23.03, 14.91), the flank starts at |y| = 36.02 mm
-//! (z = 14.26) — physics.md's reconstruction (R80 to |y| ≈ 26.0, z ≈ 2.3; c₁₃ ≈ (23.03, 14.94);
-//! R13 to z ≈ 14.3).
+//! (z = 14.26) — as a fit of the arcs to the de-inclined benchmark rail gives (R80 to |y| ≈ 26.0, z
+//! ≈ 2.3; c₁₃ ≈ (23.03, 14.94); R13 to z ≈ 14.3).
 //!
 //! y₁ = 10.5 mm was chosen by fitting the crown and R80 to the benchmark rail
 //! `MBench_UIC60_v3.prr`, de-canted by atan(1/40) about its crown (translation 300·(sin θ,
 //! 1 − cos θ), θ = atan 1/40): over |y| < 25 mm the rms vertical deviation is 0.7 µm at y₁ = 10.5
-//! and rises to 13 µm at y₁ = 10.3 (physics.md's "≲ 10.2–10.3"). The benchmark's gauge corner
+//! and rises to 13 µm at y₁ = 10.3. The benchmark's gauge corner
 //! differs from this construction by up to 0.03 mm (its head width is 71.95, not 72.00 mm).
 //!
 //! Known limits: only the head (z ≤ 38.5 mm, the depth the benchmark file covers; not an EN
@@ -48,7 +48,7 @@ pub const FLANK_SLOPE: f64 = 20.0;
 pub const CROWN_END_Y_MM: f64 = 10.5;
 /// Nominal head width [mm] …
 pub const HEAD_WIDTH_MM: f64 = 72.0;
-/// … measured this far below the top [mm] (also the gauge measuring depth, physics.md §8.3).
+/// … measured this far below the top [mm] (also the gauge measuring depth, docs/theory.md §7.5).
 pub const GAUGE_DEPTH_MM: f64 = 14.0;
 /// Depth where the sampled flank ends [mm] (the extent of the benchmark file; not an EN value).
 pub const FLANK_END_DEPTH_MM: f64 = 38.5;
@@ -210,12 +210,12 @@ mod tests {
         let g = HeadGeometry::nominal();
         let w = 2.0 * g.half_width_at_mm(GAUGE_DEPTH_MM).unwrap();
         assert!((w - 72.0).abs() < 1e-9, "{w}");
-        // On the R13 arc, as physics.md's reconstruction has it.
+        // On the R13 arc, as the fit to the benchmark rail has it.
         let j = g.junctions_mm();
         assert!(j[1].1 < 14.0 && 14.0 < j[2].1);
     }
 
-    /// The junctions agree with physics.md §8.2's reconstruction (quoted to ~0.1 mm for the
+    /// The junctions agree with a fit of the arcs to the benchmark rail (quoted to ~0.1 mm for the
     /// positions and ~0.03 mm for the R13 centre).
     #[test]
     fn junctions_close_to_the_reconstruction() {

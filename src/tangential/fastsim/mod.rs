@@ -3,7 +3,7 @@
 //! Papers: J.J. Kalker (1982), "A fast algorithm for the simplified theory of rolling contact",
 //! *Vehicle System Dynamics* 11:1–13; J.J. Kalker (1990), *Three-dimensional elastic bodies in
 //! rolling contact*, ch. 3; E.A.H. Vollebregt & P. Voltr (2023) for the blended flexibility.
-//! Equations as labelled in physics.md §4:
+//! Equations as labelled in docs/theory.md §4:
 //!
 //! * **F1** flexibilities L1 = 8a/(3 C11 G), L2 = 8a/(3 C22 G), L3 = π a √(a/b)/(4 C23 G)
 //!   ([`three_flexibilities`]; C11, C22, C23 from `crate::tangential::kalker`);
@@ -17,7 +17,7 @@
 //! * **§4.3** traction bound μ p_n with the elliptic (Hertz, default) or parabolic (Kalker 1982)
 //!   pressure ([`TractionBound`]).
 //!
-//! # Discretisation convention (physics.md §4.2, §4.6 — documented choice)
+//! # Discretisation convention (docs/theory.md §4.2, §4.6 — our choice)
 //!
 //! A uniform grid of `nx × ny` rectangular elements covers the bounding box [−a, a] × [−b, b]
 //! (Δx = 2a/nx, Δy = 2b/ny). An element belongs to the contact when its **centre** lies strictly
@@ -45,7 +45,7 @@
 //! steps only from the strip's leading edge √(1 − Y²)·a to its centre, and the spin term of every
 //! step sits at the step's midpoint, so in adhesion the element-centre tractions are FASTSIM's
 //! continuous ones. Force error against a 800² grid (same scheme), CONTACT's scheme in brackets:
-//! oracle case 1.2 % at 20² (1.2 % at 40²; table in docs/performance.md), pure ξ in
+//! oracle case 1.2 % at 20² (1.2 % at 40²; docs/performance.md), pure ξ in
 //! partial slip 0.25 % at 20² (3.3 % at 40²). CONTACT's scheme stays the library default
 //! ([`MarchScheme::Contact`]) and the `HertzContact` FMU's, whose oracle is CONTACT's printout.
 //!
@@ -84,7 +84,7 @@ use crate::error::{require_finite, require_non_negative, require_positive, Input
 use crate::tangential::kalker::{creep_coefficients, CreepCoefficients};
 use std::f64::consts::PI;
 
-/// Pressure shape used for the traction bound μ p_n (physics.md §4.3).
+/// Pressure shape used for the traction bound μ p_n (docs/theory.md §4.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TractionBound {
     /// Hertz pressure p0 √(1 − x²/a² − y²/b²), p0 = 3N/(2πab) (CONTACT's advice; default).
@@ -94,7 +94,7 @@ pub enum TractionBound {
     Parabolic,
 }
 
-/// Which flexibilities FASTSIM uses (physics.md §4.1, §4.4).
+/// Which flexibilities FASTSIM uses (docs/theory.md §4.1, §4.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Flexibility {
     /// L1, L2, L3 of F1 (Kalker's three-flexibility FASTSIM; default).
@@ -106,7 +106,7 @@ pub enum Flexibility {
     Blended,
 }
 
-/// How the F3 march integrates the rigid slip from one element to the next (physics.md §4.2; a
+/// How the F3 march integrates the rigid slip from one element to the next (docs/theory.md §4.2; a
 /// documented choice, see the module header).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum MarchScheme {
@@ -354,7 +354,7 @@ const MAX_OVERDRIVE: f64 = 1e100;
 /// next: at x + `SPIN_OFFSET_FRACTION`·Δx, towards the leading edge. CONTACT uses the same offset
 /// for rolling problems (`facphi`, default 1/6 of the rolling step dq = Δx, routine
 /// `set_tang_rhs` of CONTACT's `m_sdis.f90`); with it the 40 × 40 grid reproduces CONTACT's
-/// published FASTSIM numbers (physics.md §4.2, §4.6). 0 would be the element centre, ½ the
+/// published FASTSIM numbers (docs/theory.md §4.2, §4.6). 0 would be the element centre, ½ the
 /// midpoint of the step.
 pub const SPIN_OFFSET_FRACTION: f64 = 1.0 / 6.0;
 
@@ -982,7 +982,7 @@ mod tests {
         }
     }
 
-    /// CONTACT `fastsim` example (physics.md §4.6) in SI units.
+    /// CONTACT `fastsim` example (docs/theory.md §4.6) in SI units.
     fn oracle_contact() -> EllipticContact {
         EllipticContact {
             a: 8e-3,
@@ -1047,8 +1047,8 @@ mod tests {
 
     #[test]
     fn oracle_at_default_settings() {
-        // Acceptance (physics.md §4.6): elliptic Fy/(μN) within 4 % of −0.6016 and Mz within 6 %
-        // of −48.29 N·m; parabolic Fy/(μN) within 4 % of −0.6118.
+        // Acceptance (docs/theory.md §4.6): elliptic Fy/(μN) within 4 % of −0.6016 and Mz within 6
+        // % of −48.29 N·m; parabolic Fy/(μN) within 4 % of −0.6118.
         let e = solve_with(
             FastsimSettings::default(),
             &oracle_contact(),
@@ -1083,8 +1083,9 @@ mod tests {
         // = our 200 × 200) use blended flexibilities (F4). Same grid convention ⇒ same numbers to
         // the printed digits: Fy/(μN) 4 decimals (±0.5e−4), Mz 4 significant digits in N·mm
         // (±5 N·mm = 0.005 N·m, ±0.05 at 200²: −4.530e4 → ±5 N·mm as well), adhesion counts exact.
-        // CONTACT's frictional power is −Σ p·s, ours Σ |p||s| (brief): equal up to the small
-        // misalignment of p and s with three flexibilities, 0.012 % here — tolerance 0.05 %.
+        // CONTACT's frictional power is −Σ p·s, ours Σ |p||s| (docs/theory.md §4.5): equal up to
+        // the small misalignment of p and s with three flexibilities, 0.012 % here — tolerance 0.05
+        // %.
         let cases = [
             (
                 40,
@@ -1147,9 +1148,9 @@ mod tests {
 
     #[test]
     fn flexibilities_oracle() {
-        // physics.md §4.4: unblended 0.5000e−4 / 0.5233e−4 / 0.4079e−4 mm³/N, blended (w = 0.0799)
-        // 0.4937e−4 / 0.5152e−4 / 0.4090e−4 mm³/N, exactly as CONTACT prints them: tolerance half
-        // a unit in the 4th digit, 0.5e−8 mm³/N = 0.5e−17 m³/N.
+        // docs/theory.md §4.4: unblended 0.5000e−4 / 0.5233e−4 / 0.4079e−4 mm³/N, blended (w =
+        // 0.0799) 0.4937e−4 / 0.5152e−4 / 0.4090e−4 mm³/N, exactly as CONTACT prints them:
+        // tolerance half a unit in the 4th digit, 0.5e−8 mm³/N = 0.5e−17 m³/N.
         const MM3_PER_N: f64 = 1e-9;
         let tol = 0.5e-8 * MM3_PER_N;
         let c = oracle_contact();
@@ -1199,7 +1200,7 @@ mod tests {
         );
         assert!(rel(e160.mz, e320.mz) < 0.01);
         // Parabolic bound converges slowly and first order: successive differences halve
-        // (ratio measured 2.1), Richardson limit ≈ −0.645, the "≈ −0.64" of §4.6.
+        // (ratio measured 2.1), Richardson limit ≈ −0.645.
         let p40 = fy(40, TractionBound::Parabolic).fy / MU_N;
         let p80 = fy(80, TractionBound::Parabolic).fy / MU_N;
         let p160 = fy(160, TractionBound::Parabolic).fy / MU_N;
@@ -1393,7 +1394,7 @@ mod tests {
     #[test]
     fn signs_follow_the_conventions() {
         // Linear theory on the wheel: Fx = −G ab C11 ξ, Fy = −G ab C22 η − G c³ C23 φ,
-        // Mz = +G c³ C23 η − … (physics.md §1).
+        // Mz = +G c³ C23 η − … (docs/conventions.md).
         let c = oracle_contact();
         let mut f = Fastsim::new(FastsimSettings::default()).unwrap();
         let mut solve =
