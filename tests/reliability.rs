@@ -14,8 +14,11 @@
 //!
 //! The soak test is `tests/soak.rs`; the fuzz targets are in `fuzz/`.
 
+mod linked;
 mod reliability_support;
 
+use fmi_host::{Instance, Status};
+use linked::*;
 use railcontact::fmi::model::ModelInfo;
 use railcontact::fmi::variables::{Causality, Start, VarType};
 use railcontact::models::{hertz_contact, wheel_rail_contact};
@@ -51,7 +54,7 @@ enum P {
     S(String),
 }
 
-fn set(f: &Fmu, var: &str, value: &P) -> u32 {
+fn set(f: &Instance, var: &str, value: &P) -> Status {
     match value {
         P::R(x) => f.set_real(var, *x),
         P::I(k) => f.set_integer(var, *k),
@@ -62,8 +65,8 @@ fn set(f: &Fmu, var: &str, value: &P) -> u32 {
 
 /// An instance with `params` set before initialization; asserts every status.
 #[track_caller]
-fn initialized(info: &'static ModelInfo, name: &str, params: &[(&str, P)]) -> Fmu {
-    let f = Fmu::new(info, name);
+fn initialized(info: &'static ModelInfo, name: &str, params: &[(&str, P)]) -> Instance {
+    let f = instantiate(info, name);
     for (var, value) in params {
         assert_eq!(set(&f, var, value), OK, "{name}: {var} = {value:?}");
     }
@@ -73,19 +76,24 @@ fn initialized(info: &'static ModelInfo, name: &str, params: &[(&str, P)]) -> Fm
 
 /// Steps an instance with consecutive communication points.
 struct Run {
-    f: Fmu,
+    f: Instance,
     t: f64,
 }
 
 impl Run {
-    fn new(f: Fmu) -> Self {
+    fn new(f: Instance) -> Self {
         Self { f, t: 0.0 }
     }
 
     /// Sets `inputs`, steps; returns the status (time advances only on OK).
-    fn step(&mut self, inputs: &[(&str, f64)]) -> u32 {
+    fn step(&mut self, inputs: &[(&str, f64)]) -> Status {
         for (var, x) in inputs {
-            assert_eq!(self.f.set_real(var, *x), OK, "{}: {var} = {x}", self.f.name);
+            assert_eq!(
+                self.f.set_real(var, *x),
+                OK,
+                "{}: {var} = {x}",
+                self.f.name()
+            );
         }
         let s = self.f.step(self.t, H);
         if s == OK {
@@ -101,7 +109,7 @@ impl Run {
             s,
             OK,
             "{}: step with {inputs:?}: {:?}",
-            self.f.name,
+            self.f.name(),
             self.f.messages()
         );
         self.f.outputs()
@@ -165,9 +173,9 @@ fn every_real_and_integer_parameter_and_input_has_a_finite_range() {
 #[test]
 fn bad_values_are_rejected_when_set_with_a_message_and_nothing_changes() {
     for info in [hc(), wrc()] {
-        let f = Fmu::new(info, &name(&[&"badValues", &info.model_identifier]));
-        assert_eq!(f.setup(None), OK);
-        assert_eq!(f.enter(), OK); // Get is allowed from here on; every variable is settable.
+        let f = instantiate(info, &name(&[&"badValues", &info.model_identifier]));
+        assert_eq!(f.setup_experiment(0.0, None), OK);
+        assert_eq!(f.enter_initialization(), OK); // Get is allowed from here on; every variable is settable.
         let mut rejected = 0;
         for v in info
             .variables
@@ -216,7 +224,7 @@ fn bad_values_are_rejected_when_set_with_a_message_and_nothing_changes() {
         // Every message names its instance's variable; none is a warning only.
         assert_eq!(f.errors().len(), rejected);
         // The instance initializes and steps as a fresh one does.
-        assert_eq!(f.exit(), OK, "{:?}", f.errors());
+        assert_eq!(f.exit_initialization(), OK, "{:?}", f.errors());
         assert_eq!(f.step(0.0, H), OK);
         let fresh = initialized(
             info,
@@ -443,15 +451,15 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
         ),
     ];
     for (i, (var, spec, parts)) in cases.iter().enumerate() {
-        let f = Fmu::new(wrc(), &name(&[&"badProfile", &i]));
+        let f = instantiate(wrc(), &name(&[&"badProfile", &i]));
         assert_eq!(
             f.set_string(var, spec),
             OK,
             "strings are checked at initialization"
         );
-        assert_eq!(f.setup(None), OK);
-        assert_eq!(f.enter(), OK);
-        assert_eq!(f.exit(), ERROR, "{var} = {spec:?}");
+        assert_eq!(f.setup_experiment(0.0, None), OK);
+        assert_eq!(f.enter_initialization(), OK);
+        assert_eq!(f.exit_initialization(), ERROR, "{var} = {spec:?}");
         let mut want: Vec<&str> = vec!["initialization failed", var];
         let quoted = format!("{var} = {spec:?}");
         want.push(&quoted);
@@ -469,7 +477,7 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
             "UIC60"
         };
         assert_eq!(f.set_string(var, good), OK);
-        assert_eq!(f.exit(), OK, "{:?}", f.errors());
+        assert_eq!(f.exit_initialization(), OK, "{:?}", f.errors());
         assert_eq!(f.step(0.0, H), OK);
         f.outputs();
     }
@@ -502,10 +510,10 @@ fn a_step_absorbed_by_the_smoothing_initializes() {
 #[test]
 fn wheels_that_do_not_fit_between_the_rails_fail_initialization() {
     for (gauge, flange_backs) in [(1.0, 1.36), (1.435, 1.435), (1.435, 1.7)] {
-        let f = Fmu::new(wrc(), &name(&[&"fit", &gauge, &flange_backs]));
+        let f = instantiate(wrc(), &name(&[&"fit", &gauge, &flange_backs]));
         assert_eq!(f.set_real("trackGauge", gauge), OK);
         assert_eq!(f.set_real("flangeBackDistance", flange_backs), OK);
-        assert_eq!(f.try_init(), ERROR);
+        assert_eq!(f.initialize(), ERROR);
         f.assert_error_logged(&[&format!(
             "flangeBackDistance = {flange_backs} is outside the allowed range < trackGauge = {gauge} [m]"
         )]);
@@ -533,12 +541,12 @@ fn side_vars(side: &str) -> Vec<&'static str> {
 
 /// |Fz + Q| within 1e−6 of Q (the load balance's tolerance, with room), or 1e−2 N for tiny loads.
 #[track_caller]
-fn assert_balanced(f: &Fmu, side: &str, q: f64, context: &str) {
+fn assert_balanced(f: &Instance, side: &str, q: f64, context: &str) {
     let fz = f.real(&format!("{side}.Fz"));
     assert!(
         (fz + q).abs() <= 1e-6 * q + 1e-2,
         "{}: {side}.Fz = {fz} for a load of {q} N ({context})",
-        f.name
+        f.name()
     );
 }
 
@@ -547,7 +555,7 @@ fn assert_balanced(f: &Fmu, side: &str, q: f64, context: &str) {
 const COULOMB: f64 = 1.0 + 1e-9;
 
 /// The largest |F| / (μ Fn) over the patches of one wheel (0 without patches).
-fn traction_ratio(f: &Fmu, side: &str, mu: f64) -> f64 {
+fn traction_ratio(f: &Instance, side: &str, mu: f64) -> f64 {
     (1..=3)
         .map(|k| {
             let fnv = f.real(&format!("{side}.p{k}.Fn"));
@@ -668,7 +676,7 @@ fn implausible_states_warn_with_finite_outputs() {
         for (z, expected) in [(0.05, WARNING), (5e-4, OK), (0.002, WARNING), (5e-4, OK)] {
             let s = run.step(&[("z", z)]);
             assert_eq!(s, expected, "{ctx}, z = {z}: {:?}", run.f.messages());
-            let (get, out) = run.f.try_outputs();
+            let (get, out) = run.f.read_outputs();
             assert_eq!(
                 get, OK,
                 "{ctx}, z = {z}: outputs read once the step is done"
@@ -737,18 +745,18 @@ fn implausible_states_warn_with_finite_outputs() {
     // Evaluated lazily by fmi2GetReal after the input changed: fmi2Warning there, too.
     let f = initialized(wrc(), "implausible/get", &params);
     assert_eq!(f.set_real("z", 0.05), OK);
-    let (s, out) = f.try_outputs();
+    let (s, out) = f.read_outputs();
     assert_eq!(s, WARNING, "{:?}", f.messages());
     f.assert_finite(&out);
     f.assert_warning_logged(&["fmi2Get: implausible contact state"]);
 
     // An absurd start: fmi2ExitInitializationMode warns, and the instance steps.
-    let f = Fmu::new(wrc(), "implausible/init");
+    let f = instantiate(wrc(), "implausible/init");
     assert_eq!(f.set_integer("verticalMode", 2), OK);
     assert_eq!(f.set_real("z", 0.05), OK);
-    assert_eq!(f.setup(None), OK);
-    assert_eq!(f.enter(), OK);
-    assert_eq!(f.exit(), WARNING, "{:?}", f.messages());
+    assert_eq!(f.setup_experiment(0.0, None), OK);
+    assert_eq!(f.enter_initialization(), OK);
+    assert_eq!(f.exit_initialization(), WARNING, "{:?}", f.messages());
     f.assert_warning_logged(&["fmi2ExitInitializationMode: implausible contact state"]);
     assert_eq!(f.step(0.0, H), WARNING);
     assert_eq!(f.set_real("z", 5e-4), OK);
@@ -890,7 +898,7 @@ fn ramp_until_discard(run: &mut Run, ys: &[f64], yaw: f64, ctx: &str) -> f64 {
         let s = run.step(&[("y", y), ("yaw", yaw)]);
         if s == DISCARD {
             let good = last.unwrap_or_else(|| panic!("discarded at once ({ctx})"));
-            let at_good = run.f.try_outputs();
+            let at_good = run.f.read_outputs();
             // Terminated at the last successful time; outputs stay those of the last good step.
             assert_eq!(run.f.terminated(), (OK, true), "{ctx}");
             assert_eq!(run.f.last_successful_time(), (OK, run.t), "{ctx}");
@@ -924,13 +932,13 @@ fn flange_climb_towards_and_past_the_end_of_the_profile_discards() {
     for nm in NORMAL_MODELS {
         for tm in TANGENTIAL_MODELS {
             let ctx = format!("normalModel {nm}, tangentialModel {tm}");
-            let f = Fmu::new(wrc(), &name(&[&"climb", &nm, &tm]));
+            let f = instantiate(wrc(), &name(&[&"climb", &nm, &tm]));
             for (var, v) in models(nm, tm) {
                 assert_eq!(set(&f, var, &v), OK);
             }
-            assert_eq!(f.setup(Some(1.0)), OK);
-            assert_eq!(f.enter(), OK);
-            assert_eq!(f.exit(), OK);
+            assert_eq!(f.setup_experiment(0.0, Some(1.0)), OK);
+            assert_eq!(f.enter_initialization(), OK);
+            assert_eq!(f.exit_initialization(), OK);
             let mut run = Run::new(f);
             let good = ramp_until_discard(&mut run, &ys, 0.0, &ctx);
             assert!(good >= 0.008, "discarded already after y = {good} ({ctx})");
@@ -963,7 +971,7 @@ fn poses_that_leave_the_profiles_discard() {
                 let before = run.step_ok(&[]);
                 assert_eq!(run.step(pose), DISCARD, "{ctx}");
                 assert_eq!(run.f.terminated(), (OK, true));
-                let (s, after) = run.f.try_outputs();
+                let (s, after) = run.f.read_outputs();
                 assert_eq!(s, OK);
                 assert_eq!(
                     bits(&after),
@@ -1115,7 +1123,7 @@ fn hertz_contact_extremes_give_finite_bounded_forces() {
 fn the_state_machine_refuses_calls_out_of_order() {
     for info in [hc(), wrc()] {
         let id = info.model_identifier;
-        let f = Fmu::new(info, &name(&[&"order", &id]));
+        let f = instantiate(info, &name(&[&"order", &id]));
         let input = info
             .variables
             .iter()
@@ -1129,7 +1137,7 @@ fn the_state_machine_refuses_calls_out_of_order() {
             ERROR,
             "{id}: GetReal when instantiated"
         );
-        assert_eq!(f.exit(), ERROR, "{id}: exit without enter");
+        assert_eq!(f.exit_initialization(), ERROR, "{id}: exit without enter");
         assert_eq!(
             f.terminate(),
             ERROR,
@@ -1142,17 +1150,21 @@ fn the_state_machine_refuses_calls_out_of_order() {
         );
         f.assert_error_logged(&["fmi2DoStep must not be called in state Instantiated"]);
         // Initialization mode: no step, no second enter, no setup.
-        assert_eq!(f.setup(None), OK);
-        assert_eq!(f.enter(), OK);
-        assert_eq!(f.enter(), ERROR, "{id}: enter twice");
-        assert_eq!(f.setup(None), ERROR, "{id}: setup in initialization mode");
+        assert_eq!(f.setup_experiment(0.0, None), OK);
+        assert_eq!(f.enter_initialization(), OK);
+        assert_eq!(f.enter_initialization(), ERROR, "{id}: enter twice");
+        assert_eq!(
+            f.setup_experiment(0.0, None),
+            ERROR,
+            "{id}: setup in initialization mode"
+        );
         assert_eq!(f.step(0.0, H), ERROR, "{id}: DoStep in initialization mode");
         assert_eq!(
             f.set_real(fixed.name, 2.0e11),
             OK,
             "fixed parameters settable until exit"
         );
-        assert_eq!(f.exit(), OK);
+        assert_eq!(f.exit_initialization(), OK);
         // Step complete: fixed parameters and outputs cannot be set; inputs can.
         assert_eq!(
             f.set_real(fixed.name, 2.0e11),
@@ -1167,8 +1179,8 @@ fn the_state_machine_refuses_calls_out_of_order() {
             .expect("a Real output");
         assert_eq!(f.set_real_vr(output.vr, 1.0), ERROR, "{id}: set an output");
         assert_eq!(f.set_real_vr(input.vr, f.get_real_vr(input.vr).1), OK);
-        assert_eq!(f.exit(), ERROR, "{id}: exit twice");
-        assert_eq!(f.enter(), ERROR, "{id}: enter after init");
+        assert_eq!(f.exit_initialization(), ERROR, "{id}: exit twice");
+        assert_eq!(f.enter_initialization(), ERROR, "{id}: enter after init");
         // Bad steps: zero, negative, NaN, past the stop time is checked below.
         for (t, h) in [
             (0.0, 0.0),
@@ -1199,7 +1211,7 @@ fn the_state_machine_refuses_calls_out_of_order() {
             "{id}: set after terminate"
         );
         assert_eq!(
-            f.try_outputs().0,
+            f.read_outputs().0,
             OK,
             "{id}: outputs readable after terminate"
         );
@@ -1216,16 +1228,20 @@ fn the_state_machine_refuses_calls_out_of_order() {
 
 #[test]
 fn stepping_past_the_stop_time_is_an_error() {
-    let f = Fmu::new(hc(), "stopTime");
-    assert_eq!(f.setup(Some(2.0 * H)), OK);
-    assert_eq!(f.enter(), OK);
-    assert_eq!(f.exit(), OK);
+    let f = instantiate(hc(), "stopTime");
+    assert_eq!(f.setup_experiment(0.0, Some(2.0 * H)), OK);
+    assert_eq!(f.enter_initialization(), OK);
+    assert_eq!(f.exit_initialization(), OK);
     assert_eq!(f.step(0.0, H), OK);
     assert_eq!(f.step(H, H), OK);
     assert_eq!(f.step(2.0 * H, H), ERROR);
     f.assert_error_logged(&["goes past stopTime"]);
-    let g = Fmu::new(hc(), "badSetup");
-    assert_eq!(g.setup(Some(-1.0)), ERROR, "stop before start");
+    let g = instantiate(hc(), "badSetup");
+    assert_eq!(
+        g.setup_experiment(0.0, Some(-1.0)),
+        ERROR,
+        "stop before start"
+    );
 }
 
 #[test]
@@ -1238,8 +1254,8 @@ fn unknown_value_references_and_wrong_types_are_errors() {
             assert_eq!(f.set_real_vr(vr, 0.0), ERROR, "SetReal({vr})");
             let mut k = 0;
             // SAFETY: one value reference, one slot.
-            let s = unsafe { railcontact::fmi::export::fmi2GetInteger(f.c, &vr, 1, &mut k) };
-            assert_eq!(s, ERROR, "GetInteger({vr})");
+            let s = unsafe { (f.functions().fmi2GetInteger)(f.component(), &vr, 1, &mut k) };
+            assert_eq!(Status::from(s), ERROR, "GetInteger({vr})");
         }
         f.assert_error_logged(&[&format!("unknown value reference {}", u32::MAX)]);
         // A Real read of an Integer or String variable.
@@ -1250,25 +1266,20 @@ fn unknown_value_references_and_wrong_types_are_errors() {
         let good = info.variables[0].vr;
         let vrs = [good, n];
         let mut out = [0.0; 2];
-        // SAFETY: two value references, two slots.
-        let s = unsafe {
-            railcontact::fmi::export::fmi2GetReal(f.c, vrs.as_ptr(), 2, out.as_mut_ptr())
-        };
-        assert_eq!(s, ERROR);
+        assert_eq!(f.get_reals(&vrs, &mut out), ERROR);
         // NULL arrays with nvr > 0 are errors; with nvr = 0 a no-op.
+        let (c, get, set) = (
+            f.component(),
+            f.functions().fmi2GetReal,
+            f.functions().fmi2SetReal,
+        );
         // SAFETY: NULL arrays are checked before use.
         unsafe {
-            use railcontact::fmi::export::*;
-            assert_eq!(
-                fmi2GetReal(f.c, std::ptr::null(), 1, out.as_mut_ptr()),
-                ERROR
-            );
-            assert_eq!(fmi2SetReal(f.c, &good, 1, std::ptr::null()), ERROR);
-            assert_eq!(
-                fmi2GetReal(f.c, std::ptr::null(), 0, std::ptr::null_mut()),
-                OK
-            );
-            assert_eq!(fmi2SetReal(f.c, std::ptr::null(), 0, std::ptr::null()), OK);
+            use std::ptr::{null, null_mut};
+            assert_eq!(Status::from(get(c, null(), 1, out.as_mut_ptr())), ERROR);
+            assert_eq!(Status::from(set(c, &good, 1, null())), ERROR);
+            assert_eq!(Status::from(get(c, null(), 0, null_mut())), OK);
+            assert_eq!(Status::from(set(c, null(), 0, null())), OK);
         }
         f.assert_error_logged(&["NULL array with nvr = 1"]);
         assert_eq!(f.step(0.0, H), OK, "usable after the rejected calls");
@@ -1277,34 +1288,36 @@ fn unknown_value_references_and_wrong_types_are_errors() {
 
 #[test]
 fn null_and_freed_instances_are_refused_and_a_second_free_is_ignored() {
-    use railcontact::fmi::export::*;
+    let f = initialized(wrc(), "doubleFree", &[]);
+    let (c, fmi) = (f.component(), *f.functions());
     // SAFETY: a NULL component is checked before use.
     unsafe {
-        assert_eq!(fmi2DoStep(std::ptr::null_mut(), 0.0, H, 1), ERROR);
-        fmi2FreeInstance(std::ptr::null_mut());
+        assert_eq!(
+            Status::from((fmi.fmi2DoStep)(std::ptr::null_mut(), 0.0, H, 1)),
+            ERROR
+        );
+        (fmi.fmi2FreeInstance)(std::ptr::null_mut());
     }
-    let mut f = initialized(wrc(), "doubleFree", &[]);
-    let c = f.c;
-    f.owned = false;
-    // SAFETY: c is live; the calls after the first free are refused before the pointer is
-    // dereferenced (the instance registry), as long as no new instance got the same address —
-    // none is created in between.
+    // The first fmi2FreeInstance.
+    f.free();
+    // SAFETY: c was freed just above; the calls are refused before the pointer is dereferenced
+    // (the instance registry), as long as no new instance got the same address — none is
+    // created in between.
     unsafe {
-        fmi2FreeInstance(c);
-        fmi2FreeInstance(c);
-        assert_eq!(fmi2DoStep(c, 0.0, H, 1), ERROR);
+        (fmi.fmi2FreeInstance)(c);
+        assert_eq!(Status::from((fmi.fmi2DoStep)(c, 0.0, H, 1)), ERROR);
         let vr = 0u32;
         let mut x = 0.0;
-        assert_eq!(fmi2GetReal(c, &vr, 1, &mut x), ERROR);
-        assert_eq!(fmi2Reset(c), ERROR);
+        assert_eq!(Status::from((fmi.fmi2GetReal)(c, &vr, 1, &mut x)), ERROR);
+        assert_eq!(Status::from((fmi.fmi2Reset)(c)), ERROR);
         let mut foreign = 0u64;
-        let fake: fmi_sys::fmi2::fmi2Component = (&mut foreign as *mut u64).cast();
+        let fake: fmi_host::sys::fmi2Component = (&mut foreign as *mut u64).cast();
         assert_eq!(
-            fmi2Terminate(fake),
+            Status::from((fmi.fmi2Terminate)(fake)),
             ERROR,
             "a pointer that is not an instance"
         );
-        fmi2FreeInstance(fake);
+        (fmi.fmi2FreeInstance)(fake);
     }
 }
 
@@ -1314,27 +1327,28 @@ fn instantiation_is_refused_with_a_message() {
         ("wrongGuid", "{00000000-0000-0000-0000-000000000000}"),
         ("emptyGuid", ""),
     ] {
-        assert!(Fmu::try_new(wrc(), label, guid, None).is_none());
+        let refused = linked::fmu(wrc()).instantiate_as(label, guid, None);
+        let Err(fmi_host::Error::Instantiate { messages, .. }) = refused else {
+            panic!("{label}: instantiated");
+        };
         assert!(
-            messages_of(label)
+            messages
                 .iter()
                 .any(|m| m.status == ERROR && m.text.contains("does not match")),
-            "{:?}",
-            messages_of(label)
+            "{messages:?}"
         );
     }
     // No resource location: the built-in profiles still work (docs/integration.md, "Bundled
     // profiles and `resourceLocation`").
-    let f = Fmu::try_new(wrc(), "noResources", wrc().guid, None).expect("instantiated");
+    let fmu = linked::fmu(wrc());
+    let f = fmu
+        .instantiate_as("noResources", wrc().guid, None)
+        .expect("instantiated");
     f.init();
     assert_eq!(f.step(0.0, H), OK);
-    let f = Fmu::try_new(
-        wrc(),
-        "oddResources",
-        wrc().guid,
-        Some("http://example.org/x"),
-    )
-    .expect("instantiated");
+    let f = fmu
+        .instantiate_as("oddResources", wrc().guid, Some("http://example.org/x"))
+        .expect("instantiated");
     f.init();
 }
 
@@ -1362,13 +1376,19 @@ fn reset_and_re_initialization_with_other_parameters_match_a_fresh_instance() {
 
 /// Runs `steps` steps of the random walk from `seed`, starting at step `from`, returning the
 /// outputs of every step.
-fn walk(f: &Fmu, walk: &mut PoseWalk, from: usize, steps: usize) -> Vec<Vec<f64>> {
+fn walk(f: &Instance, walk: &mut PoseWalk, from: usize, steps: usize) -> Vec<Vec<f64>> {
     (from..from + steps)
         .map(|k| {
             let x = walk.next();
-            assert_eq!(f.set_reals(&walk.vrs, &x), OK, "{}", f.name);
+            assert_eq!(f.set_reals(&walk.vrs, &x), OK, "{}", f.name());
             let s = f.step(k as f64 * H, H);
-            assert_eq!(s, OK, "{} step {k} with {x:?}: {:?}", f.name, f.messages());
+            assert_eq!(
+                s,
+                OK,
+                "{} step {k} with {x:?}: {:?}",
+                f.name(),
+                f.messages()
+            );
             f.outputs()
         })
         .collect()
@@ -1385,21 +1405,12 @@ fn a_state_saved_at_step_1000_reproduces_steps_1000_to_2000_bit_for_bit() {
         let f = initialized(wrc(), &name(&[&"state1000", &nm]), &params);
         let mut pose = PoseWalk::new(wrc(), 2024 + nm as u64);
         walk(&f, &mut pose, 0, 1000);
-        let mut state: fmi_sys::fmi2::fmi2FMUstate = std::ptr::null_mut();
-        // SAFETY: live instance, NULL slot.
-        assert_eq!(
-            unsafe { railcontact::fmi::export::fmi2GetFMUstate(f.c, &mut state) },
-            OK
-        );
-        let serialized = f.serialized_state();
+        let state = f.get_state().unwrap();
+        let serialized = f.serialized_state().unwrap();
         let pose_at_1000 = pose.clone();
         let first = walk(&f, &mut pose, 1000, 1000);
 
-        // SAFETY: state created above.
-        assert_eq!(
-            unsafe { railcontact::fmi::export::fmi2SetFMUstate(f.c, state) },
-            OK
-        );
+        assert_eq!(f.set_state(&state), OK);
         let again = walk(&f, &mut pose_at_1000.clone(), 1000, 1000);
         for (k, (a, b)) in first.iter().zip(&again).enumerate() {
             assert_eq!(
@@ -1410,7 +1421,7 @@ fn a_state_saved_at_step_1000_reproduces_steps_1000_to_2000_bit_for_bit() {
             );
         }
 
-        let g = Fmu::new(wrc(), &name(&[&"state1000fresh", &nm]));
+        let g = instantiate(wrc(), &name(&[&"state1000fresh", &nm]));
         assert_eq!(g.restore_serialized(&serialized), OK, "{:?}", g.errors());
         let fresh = walk(&g, &mut pose_at_1000.clone(), 1000, 1000);
         for (k, (a, b)) in first.iter().zip(&fresh).enumerate() {
@@ -1421,13 +1432,7 @@ fn a_state_saved_at_step_1000_reproduces_steps_1000_to_2000_bit_for_bit() {
                 1000 + k
             );
         }
-        // SAFETY: freed once.
-        unsafe {
-            assert_eq!(
-                railcontact::fmi::export::fmi2FreeFMUstate(f.c, &mut state),
-                OK
-            );
-        }
+        assert_eq!(state.free().0, OK);
         assert!(f.errors().is_empty() && g.errors().is_empty());
     }
 }
@@ -1452,7 +1457,7 @@ fn hertz_contact_state_round_trip_over_a_random_walk() {
             30.0 * u(),
         ]
     };
-    let run = |f: &Fmu, from: usize, xs: &[[f64; 7]]| -> Vec<Vec<f64>> {
+    let run = |f: &Instance, from: usize, xs: &[[f64; 7]]| -> Vec<Vec<f64>> {
         xs.iter()
             .enumerate()
             .map(|(i, x)| {
@@ -1465,7 +1470,7 @@ fn hertz_contact_state_round_trip_over_a_random_walk() {
     let before: Vec<[f64; 7]> = (0..300).map(|_| inputs()).collect();
     let after: Vec<[f64; 7]> = (0..300).map(|_| inputs()).collect();
     run(&f, 0, &before);
-    let saved = f.serialized_state();
+    let saved = f.serialized_state().unwrap();
     let first = run(&f, 300, &after);
     assert_eq!(f.restore_serialized(&saved), OK);
     let again = run(&f, 300, &after);
@@ -1496,14 +1501,14 @@ fn corrupted_serialized_states_are_rejected_and_change_nothing() {
     let f = initialized(wrc(), "corrupt", &[("normalModel", P::I(6))]);
     let mut pose = PoseWalk::new(wrc(), 99);
     walk(&f, &mut pose, 0, 20);
-    let good = f.serialized_state();
+    let good = f.serialized_state().unwrap();
     let outputs = f.outputs();
     let n = good.len();
     let mut rejected = 0usize;
     let mut expect_rejected = |bytes: &[u8], what: &str| {
         let (s, state) = f.deserialize(bytes);
         assert_eq!(s, ERROR, "{what} accepted");
-        assert!(state.is_null(), "{what}: a state was allocated");
+        assert!(state.is_none(), "{what}: a state was allocated");
         rejected += 1;
     };
     // Every truncation, and one byte more.
@@ -1534,7 +1539,7 @@ fn corrupted_serialized_states_are_rejected_and_change_nothing() {
     // A well-formed state of another FMU (its GUID), and this FMU's state with a foreign GUID
     // and a valid checksum.
     let other = initialized(hc(), "corruptOther", &[]);
-    let foreign = other.serialized_state();
+    let foreign = other.serialized_state().unwrap();
     assert_eq!(f.deserialize(&foreign).0, ERROR);
     f.assert_error_logged(&["FMU state belongs to GUID", hc().guid]);
     let mut renamed = good.clone();
@@ -1583,7 +1588,7 @@ fn eight_instances_interleaved_in_one_thread_match_each_alone() {
         .enumerate()
         .map(|(i, c)| run_alone(i, *c, steps, "alone"))
         .collect();
-    let fmus: Vec<Fmu> = configs
+    let fmus: Vec<Instance> = configs
         .iter()
         .enumerate()
         .map(|(i, (nm, tm, _))| initialized(wrc(), &name(&[&"together", &i]), &models(*nm, *tm)))

@@ -1,9 +1,10 @@
-//! Soak test of the `WheelRailContact` FMU through its exported C functions
-//! (docs/reliability.md): a random walk of the wheelset pose (lateral shift, yaw, roll, both wheel
-//! loads, forward and lateral speed, yaw rate, axle speed) from a fixed seed, one `fmi2SetReal`,
-//! `fmi2DoStep` and `fmi2GetReal`/`fmi2GetInteger` of every output per step, with every 1 000
-//! steps an FMU state taken, serialized and freed. Checked: every status OK, no output NaN or
-//! infinite, the vertical balance of both wheels, and a flat resident set size after warm-up.
+//! Soak test of the `WheelRailContact` FMU through its exported C functions, driven by the
+//! `fmi_host` harness (docs/reliability.md): a random walk of the wheelset pose (lateral shift,
+//! yaw, roll, both wheel loads, forward and lateral speed, yaw rate, axle speed) from a fixed
+//! seed, one `fmi2SetReal`, `fmi2DoStep` and `fmi2GetReal`/`fmi2GetInteger` of every output per
+//! step, with every 1 000 steps an FMU state taken, serialized and freed. Checked: every status
+//! OK, no output NaN or infinite, the vertical balance of both wheels, and a flat resident set
+//! size after warm-up.
 //!
 //! * the full run, 1 000 000 steps (about 2 minutes in release):
 //!   `cargo test --release --test soak -- --ignored --nocapture`
@@ -12,8 +13,10 @@
 //! `RAILCONTACT_SOAK_STEPS` overrides the number of steps of the full run, and
 //! `RAILCONTACT_SOAK_NORMAL_MODEL` (1–6) the normal model (default 1, Hertz).
 
+mod linked;
 mod reliability_support;
 
+use linked::*;
 use railcontact::fmi::variables::{Causality, VarType};
 use railcontact::models::wheel_rail_contact::INFO;
 use reliability_support::*;
@@ -25,7 +28,7 @@ const H: f64 = 1e-3;
 /// below what leaking even 8 bytes per step would add over 20 000 steps or more.
 const RSS_GROWTH_LIMIT_KB: u64 = 2048;
 
-/// Index of the Real output `name` in [`Fmu::outputs`].
+/// Index of the Real output `name` in [`Instance::read_outputs`].
 fn output_index(name: &str) -> usize {
     INFO.variables
         .iter()
@@ -53,7 +56,7 @@ struct Report {
 
 fn soak(steps: usize, normal_model: i32, warmup: usize) -> Report {
     let label = format!("soak{normal_model}");
-    let f = Fmu::new(&INFO, &label);
+    let f = instantiate(&INFO, &label);
     assert_eq!(f.set_integer("normalModel", normal_model), OK);
     f.init();
     let mut pose = PoseWalk::new(&INFO, 20_240_601);
@@ -67,7 +70,7 @@ fn soak(steps: usize, normal_model: i32, warmup: usize) -> Report {
         assert_eq!(f.set_reals(&pose.vrs, &x), OK, "step {k}");
         let s = f.step(k as f64 * H, H);
         assert_eq!(s, OK, "step {k}, inputs {x:?}: {:?}", f.messages());
-        let (s, out) = f.try_outputs();
+        let (s, out) = f.read_outputs();
         assert_eq!(s, OK, "outputs at step {k}");
         f.assert_finite(&out);
         // Vertical balance (z down: Fz = −Q), 1e−6 of the load or 10 mN.
@@ -81,7 +84,7 @@ fn soak(steps: usize, normal_model: i32, warmup: usize) -> Report {
         }
         if k % 1000 == 999 {
             // State machinery: allocate, serialize, free.
-            let bytes = f.serialized_state();
+            let bytes = f.serialized_state().unwrap();
             assert!(bytes.len() > 1000);
         }
         if (k + 1) % sample_every == 0 {

@@ -1,13 +1,13 @@
-//! A step performs no heap allocation after initialisation: `Fastsim::solve` (physics
-//! core contract, `src/lib.rs`), the wheelset solver for every normal model and tangential
-//! option, and `fmi2DoStep` and `fmi2GetDirectionalDerivative` of the WheelRailContact FMU
-//! through its exported C functions. Counted with a global allocator wrapper; one test in this
-//! binary so that no other test thread allocates meanwhile.
+//! A step performs no heap allocation after initialisation: `Fastsim::solve` (physics core
+//! contract, `src/lib.rs`), the wheelset solver for every normal model and tangential option,
+//! and `fmi2DoStep` and `fmi2GetDirectionalDerivative` of the WheelRailContact FMU through its
+//! exported C functions (driven by the `fmi_host` harness). Counted with a global allocator
+//! wrapper; one test in this binary so that no other test thread allocates meanwhile.
 
 mod common;
+mod linked;
 
-use fmi_sys::fmi2::*;
-use railcontact::fmi::export::*;
+use fmi_host::Status;
 use railcontact::models::wheel_rail_contact::INFO;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::{
@@ -16,7 +16,6 @@ use railcontact::tangential::fastsim::{
 use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::WheelsetResult;
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::ffi::CString;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 struct Counting;
@@ -74,80 +73,43 @@ fn wheelset_steps_do_not_allocate() {
     }
 }
 
-fn vr(name: &str) -> u32 {
-    INFO.variable(name).expect("known variable").vr
-}
-
 fn do_step_does_not_allocate(model: i32) {
-    let callbacks = fmi2CallbackFunctions {
-        logger: Some(fmi_sys::fmi2::logger::callback_logger_handler),
-        allocateMemory: None,
-        freeMemory: None,
-        stepFinished: None,
-        componentEnvironment: std::ptr::null_mut(),
-    };
-    let name = CString::new(format!("alloc{model}")).unwrap();
-    let guid = CString::new(INFO.guid).unwrap();
-    let uri = c"file:///nonexistent/resources";
-    // SAFETY: valid strings and callbacks for each call's duration; the component is used only
-    // between Instantiate and FreeInstance.
-    unsafe {
-        let c = fmi2Instantiate(
-            name.as_ptr(),
-            fmi2Type_fmi2CoSimulation,
-            guid.as_ptr(),
-            uri.as_ptr(),
-            &callbacks,
-            0,
-            0,
-        );
-        assert!(!c.is_null());
-        let r = vr("normalModel");
-        assert_eq!(fmi2SetInteger(c, &r, 1, &model), fmi2Status_fmi2OK);
+    let f = linked::instantiate(&INFO, &format!("alloc{model}"));
+    assert_eq!(f.set_integer("normalModel", model), Status::Ok);
+    assert_eq!(f.initialize(), Status::Ok);
+    let (y, fx) = (f.vr("y"), f.vr("right.Fx"));
+    let h = 1e-3;
+    // Directional derivatives of both forces along y and omega (the first call makes the
+    // scratch values; the later ones allocate nothing either).
+    let unknowns = [fx, f.vr("right.Fy")];
+    let knowns = [y, f.vr("omega")];
+    let seed = [1.0, 0.5];
+    let mut derivative = [0.0; 2];
+    assert_eq!(f.step(0.0, h), Status::Ok);
+    assert_eq!(
+        f.directional_derivative_vr(&unknowns, &knowns, &seed, &mut derivative),
+        Status::Ok
+    );
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let mut value = 0.0;
+    for k in 0..=40 {
+        assert_eq!(f.set_real_vr(y, ramp(k)), Status::Ok);
+        assert_eq!(f.step((k + 1) as f64 * h, h), Status::Ok);
+        let (s, x) = f.get_real_vr(fx);
+        assert_eq!(s, Status::Ok);
+        value = x;
         assert_eq!(
-            fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0),
-            fmi2Status_fmi2OK
+            f.directional_derivative_vr(&unknowns, &knowns, &seed, &mut derivative),
+            Status::Ok
         );
-        assert_eq!(fmi2EnterInitializationMode(c), fmi2Status_fmi2OK);
-        assert_eq!(fmi2ExitInitializationMode(c), fmi2Status_fmi2OK);
-        let y = vr("y");
-        let fx = vr("right.Fx");
-        let h = 1e-3;
-        // Directional derivatives of both forces along y and omega (the first call makes the
-        // scratch values; the later ones allocate nothing either).
-        let unknowns = [fx, vr("right.Fy")];
-        let knowns = [y, vr("omega")];
-        let seed = [1.0, 0.5];
-        let mut derivative = [0.0; 2];
-        let derive = |out: &mut [f64; 2]| {
-            fmi2GetDirectionalDerivative(
-                c,
-                unknowns.as_ptr(),
-                2,
-                knowns.as_ptr(),
-                2,
-                seed.as_ptr(),
-                out.as_mut_ptr(),
-            )
-        };
-        assert_eq!(fmi2DoStep(c, 0.0, h, 1), fmi2Status_fmi2OK);
-        assert_eq!(derive(&mut derivative), fmi2Status_fmi2OK);
-        let before = ALLOCATIONS.load(Ordering::SeqCst);
-        let mut value = 0.0;
-        for k in 0..=40 {
-            assert_eq!(fmi2SetReal(c, &y, 1, &ramp(k)), fmi2Status_fmi2OK);
-            assert_eq!(fmi2DoStep(c, (k + 1) as f64 * h, h, 1), fmi2Status_fmi2OK);
-            assert_eq!(fmi2GetReal(c, &fx, 1, &mut value), fmi2Status_fmi2OK);
-            assert_eq!(derive(&mut derivative), fmi2Status_fmi2OK);
-        }
-        let n = ALLOCATIONS.load(Ordering::SeqCst) - before;
-        fmi2FreeInstance(c);
-        assert_eq!(
-            n, 0,
-            "normalModel {model}: {n} allocations in 41 DoSteps and derivative calls"
-        );
-        assert!(value.is_finite() && derivative.iter().all(|d| d.is_finite()));
     }
+    let n = ALLOCATIONS.load(Ordering::SeqCst) - before;
+    f.free();
+    assert_eq!(
+        n, 0,
+        "normalModel {model}: {n} allocations in 41 DoSteps and derivative calls"
+    );
+    assert!(value.is_finite() && derivative.iter().all(|d| d.is_finite()));
 }
 
 #[test]

@@ -3,19 +3,20 @@
 //! (`docs/conventions.md`, "The wheelset on the track"), and their directional derivatives
 //! (`src/fmi/derivative.rs`; HertzContact's too).
 
-mod reliability_support;
+mod linked;
 
+use fmi_host::Instance;
+use linked::{Checked, ERROR, OK};
 use railcontact::fmi::variables::{Causality, Variability};
 use railcontact::models::{hertz_contact, wheel_rail_contact::INFO};
-use reliability_support::{Fmu, ERROR, OK};
 
 const SIDES: [(&str, f64); 2] = [("left", -1.0), ("right", 1.0)];
 const PATCHES: [&str; 3] = ["p1", "p2", "p3"];
 
 /// A WheelRailContact instance with the integer parameters `ints` and `planarPatch` set,
 /// initialized, with the inputs `inputs` set.
-fn instance(name: &str, ints: &[(&str, i32)], planar: bool, inputs: &[(&str, f64)]) -> Fmu {
-    let f = Fmu::new(&INFO, name);
+fn instance(name: &str, ints: &[(&str, i32)], planar: bool, inputs: &[(&str, f64)]) -> Instance {
+    let f = linked::instantiate(&INFO, name);
     for &(n, k) in ints {
         assert_eq!(f.set_integer(n, k), OK, "{n} = {k}");
     }
@@ -25,7 +26,7 @@ fn instance(name: &str, ints: &[(&str, i32)], planar: bool, inputs: &[(&str, f64
     f
 }
 
-fn set_all(f: &Fmu, inputs: &[(&str, f64)]) {
+fn set_all(f: &Instance, inputs: &[(&str, f64)]) {
     for &(n, x) in inputs {
         assert_eq!(f.set_real(n, x), OK, "{n} = {x}: {:?}", f.errors());
     }
@@ -33,7 +34,7 @@ fn set_all(f: &Fmu, inputs: &[(&str, f64)]) {
 
 /// One communication step of 1 ms from t = 0.
 #[track_caller]
-fn step(f: &Fmu) {
+fn step(f: &Instance) {
     assert_eq!(f.step(0.0, 1e-3), OK, "{:?}", f.errors());
 }
 
@@ -55,7 +56,7 @@ fn norm(a: V3) -> f64 {
 /// with the contact axes of `docs/conventions.md`: F_k = Fx e_x + Fy e_y − Fn e_z at the
 /// patch's position r_k, M = Σ r_k × F_k + Mz_k e_z; and the largest |r_k||F_k| (the scale of
 /// the moment's round-off).
-fn rebuilt_wrench(f: &Fmu, side: &str, sigma: f64) -> (V3, V3, f64) {
+fn rebuilt_wrench(f: &Instance, side: &str, sigma: f64) -> (V3, V3, f64) {
     let (mut force, mut moment, mut scale) = ([0.0; 3], [0.0; 3], 0.0f64);
     for p in PATCHES {
         let g = |q: &str| f.real(&format!("{side}.{p}.{q}"));
@@ -78,7 +79,7 @@ fn rebuilt_wrench(f: &Fmu, side: &str, sigma: f64) -> (V3, V3, f64) {
     (force, moment, scale)
 }
 
-fn totals(f: &Fmu, side: &str) -> (V3, V3) {
+fn totals(f: &Instance, side: &str) -> (V3, V3) {
     let g = |q: &str| f.real(&format!("{side}.{q}"));
     ([g("Fx"), g("Fy"), g("Fz")], [g("Mx"), g("My"), g("Mz")])
 }
@@ -197,7 +198,7 @@ fn a_mirrored_pose_mirrors_the_wrench() {
                 }
                 // The heaviest patch (slots may be numbered differently) sits at the mirrored
                 // position.
-                let heaviest = |f: &Fmu, s: &str| {
+                let heaviest = |f: &Instance, s: &str| {
                     PATCHES
                         .iter()
                         .max_by(|p, q| {
@@ -324,18 +325,18 @@ fn tread_pose() -> Vec<(&'static str, f64)> {
 
 /// An instance of `model` at the tread pose after two steps (the warm start has its history),
 /// and its serialized state.
-fn at_tread(name: &str, model: i32) -> (Fmu, Vec<u8>) {
+fn at_tread(name: &str, model: i32) -> (Instance, Vec<u8>) {
     let f = instance(name, &[("normalModel", model)], false, &tread_pose());
     for k in 0..2 {
         assert_eq!(f.step(k as f64 * 1e-3, 1e-3), OK, "{:?}", f.errors());
     }
-    let state = f.serialized_state();
+    let state = f.serialized_state().unwrap_or_else(|e| panic!("{e}"));
     (f, state)
 }
 
 /// The host's own central difference of `output` over `input` ± `h`: from the state `base`
 /// (time 2 ms), set the input, step, read, for each side.
-fn host_difference(f: &Fmu, base: &[u8], output: &str, input: &str, h: f64) -> f64 {
+fn host_difference(f: &Instance, base: &[u8], output: &str, input: &str, h: f64) -> f64 {
     let x0 = f.real(input);
     let at = |x: f64| {
         assert_eq!(f.restore_serialized(base), OK);
@@ -385,7 +386,7 @@ fn derivatives_agree_with_a_hosts_central_differences() {
 /// the call right after a step and after new inputs were set for the next one.
 #[test]
 fn a_derivative_call_leaves_the_state_alone() {
-    let bits = |f: &Fmu| -> Vec<u64> { f.outputs().iter().map(|x| x.to_bits()).collect() };
+    let bits = |f: &Instance| -> Vec<u64> { f.outputs().iter().map(|x| x.to_bits()).collect() };
     for model in 1..=6 {
         let asked = instance(
             &format!("ddAsked{model}"),
@@ -490,7 +491,7 @@ fn misused_derivative_calls_are_errors() {
         assert_eq!(s, ERROR);
         f.assert_error_logged(&["fmi2GetDirectionalDerivative", reason]);
     }
-    let fresh = Fmu::new(&INFO, "ddFresh");
+    let fresh = linked::instantiate(&INFO, "ddFresh");
     let (s, _) = fresh.directional_derivative(&["right.Fy"], &[("y", 1.0)]);
     assert_eq!(s, ERROR);
     fresh.assert_error_logged(&["fmi2GetDirectionalDerivative must not be called"]);
@@ -502,7 +503,7 @@ fn misused_derivative_calls_are_errors() {
 /// default grid reproduces that limit within its discretisation error, 1 % allowed.
 #[test]
 fn point_contact_derivatives_are_kalkers_linear_theory() {
-    let f = Fmu::new(&hertz_contact::INFO, "ddHertz");
+    let f = linked::instantiate(&hertz_contact::INFO, "ddHertz");
     assert_eq!(f.set_integer("fastsimScheme", 1), OK);
     f.init();
     for n in ["xi", "eta", "phi"] {

@@ -9,14 +9,17 @@ tests are the acceptance gate of the packed FMUs.
 ``bundled_fmu_dir`` packs a second set with the benchmark profiles in ``resources/`` by running
 the packer's command (``cargo run --release -p fmu-pack -- --resource … --out DIR``); the
 benchmark files come from ``tests/data`` (``data_file``).
-``run_ecos`` runs ``ecos_driver.py`` (the Ecos host, in a subprocess).
+
+``run_libcosim`` and ``run_ecos`` run ``libcosim_driver.py`` and ``ecos_driver.py`` (the libcosim
+and Ecos hosts, each in a subprocess).
 
 The fixtures ``fmu_path``, ``model_description``, ``unzipdir`` and ``shared_library`` are those
-of HertzContact (``test_hertz_contact.py``); ``wrc_fmu_path``, ``wrc_model_description`` and
-``wrc_unzipdir`` those of WheelRailContact (``test_wheel_rail_contact.py``). The helpers both
-modules use live here: ``bits``, the log router ``LOG`` (one per process — FMPy's native logger
-proxy keeps a single Python logger in a static variable, so two routers would steal each other's
-messages) and the ``Slave`` wrapper.
+of HertzContact (``test_hertz_contact.py``); ``wrc_fmu_path``, ``wrc_model_description``,
+``wrc_unzipdir`` and ``wrc_shared_library`` those of WheelRailContact
+(``test_wheel_rail_contact.py``). The checks and helpers both modules use live here:
+``assert_fmpy_validates``, ``assert_exports_exactly_the_34_fmi2_functions``, ``bits``, the log
+router ``LOG`` (one per process — FMPy's native logger proxy keeps a single Python logger in a
+static variable, so two routers would steal each other's messages) and the ``Slave`` wrapper.
 """
 
 from __future__ import annotations
@@ -51,10 +54,12 @@ from fmpy.fmi2 import (
 )
 from fmpy.logging import addLoggerProxy
 from fmpy.model_description import ModelDescription, read_model_description
+from fmpy.validation import validate_fmu
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 FMU_FILE_NAME = "HertzContact.fmu"
 WRC_FMU_FILE_NAME = "WheelRailContact.fmu"
+FMU_FILE_NAMES = (FMU_FILE_NAME, WRC_FMU_FILE_NAME)
 FMU_DIR_ENV = "RAILCONTACT_FMU_DIR"
 
 STEP = 1e-3  # s; the default experiments' step size (both models)
@@ -107,54 +112,79 @@ def packed_fmu(file_name: str) -> Path:
     return path
 
 
-@pytest.fixture(scope="session")
-def fmu_path() -> Path:
-    """Path of the packed HertzContact FMU."""
-    return packed_fmu(FMU_FILE_NAME)
-
-
-@pytest.fixture(scope="session")
-def model_description(fmu_path: Path) -> ModelDescription:
+def validated_description(path: Path) -> ModelDescription:
     """The FMU's modelDescription.xml, parsed (and XSD-validated) by FMPy."""
-    return read_model_description(str(fmu_path), validate=True)
+    return read_model_description(str(path), validate=True)
 
 
-@pytest.fixture(scope="session")
-def unzipdir(fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+def extracted(path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The FMU extracted once per test run; every FMU2Slave of the run loads it from here."""
-    target = tmp_path_factory.mktemp("HertzContact_unzipped")
-    return Path(fmpy.extract(str(fmu_path), unzipdir=str(target)))
+    target = tmp_path_factory.mktemp(f"{path.stem}_unzipped")
+    return Path(fmpy.extract(str(path), unzipdir=str(target)))
 
 
-@pytest.fixture(scope="session")
-def shared_library(unzipdir: Path, model_description: ModelDescription) -> Path:
-    """The FMU's linux64 shared library inside the extracted FMU."""
-    identifier = model_description.coSimulation.modelIdentifier
+def linux64_library(unzipdir: Path, md: ModelDescription) -> Path:
+    """The FMU's linux64 shared library inside the extracted FMU; fails when it is missing."""
+    identifier = md.coSimulation.modelIdentifier
     path = unzipdir / "binaries" / "linux64" / f"{identifier}.so"
     if not path.is_file():
         pytest.fail(f"the FMU has no binaries/linux64/{identifier}.so", pytrace=False)
     return path
 
 
-# ---------------------------------------------------------------------------------------------
-# WheelRailContact
+def assert_fmpy_validates(path: Path) -> None:
+    """FMPy's validation, by its command line and its API, finds no problem in the FMU."""
+    # FMPy 0.3.32's command line is `fmpy.cli` (`fmpy.command_line` does not exist in 0.3.32);
+    # it exits with the number of problems.
+    proc = subprocess.run(
+        [sys.executable, "-m", "fmpy.cli", "validate", str(path)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert proc.returncode == 0, f"fmpy validate: exit {proc.returncode}\n{proc.stdout}\n{proc.stderr}"
+    assert "No problems found" in proc.stdout
+    assert validate_fmu(str(path)) == []
 
 
-@pytest.fixture(scope="session")
-def wrc_fmu_path() -> Path:
-    """Path of the packed WheelRailContact FMU."""
-    return packed_fmu(WRC_FMU_FILE_NAME)
+def assert_exports_exactly_the_34_fmi2_functions(library: Path) -> None:
+    """The library's dynamic symbols starting with fmi2 (``nm -D``) are the standard's 34."""
+    nm = require_tool("nm")
+    out = subprocess.run([nm, "-D", "--defined-only", str(library)], capture_output=True, text=True, check=True).stdout
+    symbols = [line.split()[-1] for line in out.splitlines() if line.strip()]
+    fmi2 = sorted(s for s in symbols if s.startswith("fmi2"))
+    assert len(fmi2) == 34, fmi2
+    assert set(fmi2) == EXPECTED_FMI2_EXPORTS
 
 
-@pytest.fixture(scope="session")
-def wrc_model_description(wrc_fmu_path: Path) -> ModelDescription:
-    return read_model_description(str(wrc_fmu_path), validate=True)
+def packed_fmu_fixtures(prefix: str, file_name: str):
+    """The fixtures (one per test run) of one packed FMU, named ``{prefix}fmu_path`` (its path),
+    ``{prefix}model_description``, ``{prefix}unzipdir`` (extracted once) and
+    ``{prefix}shared_library`` (its linux64 library)."""
+
+    @pytest.fixture(scope="session", name=f"{prefix}fmu_path")
+    def path_fixture() -> Path:
+        return packed_fmu(file_name)
+
+    @pytest.fixture(scope="session", name=f"{prefix}model_description")
+    def description_fixture(request: pytest.FixtureRequest) -> ModelDescription:
+        return validated_description(request.getfixturevalue(f"{prefix}fmu_path"))
+
+    @pytest.fixture(scope="session", name=f"{prefix}unzipdir")
+    def unzipdir_fixture(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory) -> Path:
+        return extracted(request.getfixturevalue(f"{prefix}fmu_path"), tmp_path_factory)
+
+    @pytest.fixture(scope="session", name=f"{prefix}shared_library")
+    def library_fixture(request: pytest.FixtureRequest) -> Path:
+        unzipped = request.getfixturevalue(f"{prefix}unzipdir")
+        return linux64_library(unzipped, request.getfixturevalue(f"{prefix}model_description"))
+
+    return path_fixture, description_fixture, unzipdir_fixture, library_fixture
 
 
-@pytest.fixture(scope="session")
-def wrc_unzipdir(wrc_fmu_path: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
-    target = tmp_path_factory.mktemp("WheelRailContact_unzipped")
-    return Path(fmpy.extract(str(wrc_fmu_path), unzipdir=str(target)))
+# HertzContact (test_hertz_contact.py) and WheelRailContact (test_wheel_rail_contact.py).
+fmu_path, model_description, unzipdir, shared_library = packed_fmu_fixtures("", FMU_FILE_NAME)
+wrc_fmu_path, wrc_model_description, wrc_unzipdir, wrc_shared_library = packed_fmu_fixtures("wrc_", WRC_FMU_FILE_NAME)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -195,22 +225,38 @@ def bundled_fmu_dir(tmp_path_factory: pytest.TempPathFactory) -> PackerRun:
 
 
 # ---------------------------------------------------------------------------------------------
-# Ecos (ecospy), in a subprocess
+# Co-simulation engines, each in a subprocess (libcosim aborts its process when the FMU returns
+# fmi2Error from fmi2GetReal; Ecos is kept apart the same way)
 
 
-def run_ecos(config: dict, tmp_path: Path) -> tuple[dict, str]:
-    """Runs ecos_driver.py on `config`; returns its result and its output (Ecos's log)."""
-    config_path, result_path = tmp_path / "ecos_config.json", tmp_path / "ecos_result.json"
+def run_driver(script: str, config: dict, tmp_path: Path) -> tuple[subprocess.CompletedProcess, dict | None]:
+    """Runs the driver `script` (beside this file) on `config`; returns the finished process and
+    the result it wrote (None if it wrote none)."""
+    stem = script.split("_")[0]
+    config_path, result_path = tmp_path / f"{stem}_config.json", tmp_path / f"{stem}_result.json"
     config_path.write_text(json.dumps(config), encoding="utf-8")
     proc = subprocess.run(
-        [sys.executable, str(Path(__file__).resolve().parent / "ecos_driver.py"), str(config_path), str(result_path)],
+        [sys.executable, str(Path(__file__).resolve().parent / script), str(config_path), str(result_path)],
         capture_output=True,
         text=True,
         timeout=300,
     )
+    result = json.loads(result_path.read_text(encoding="utf-8")) if result_path.is_file() else None
+    return proc, result
+
+
+def run_libcosim(config: dict, tmp_path: Path) -> tuple[subprocess.CompletedProcess, dict | None]:
+    """Runs libcosim_driver.py (libcosimpy) on `config`."""
+    return run_driver("libcosim_driver.py", config, tmp_path)
+
+
+def run_ecos(config: dict, tmp_path: Path) -> tuple[dict, str]:
+    """Runs ecos_driver.py on `config`; returns its result and its output (Ecos's log)."""
+    proc, result = run_driver("ecos_driver.py", config, tmp_path)
     log = proc.stdout + proc.stderr
     assert proc.returncode == 0, f"Ecos driver died (exit {proc.returncode}):\n{log[-4000:]}"
-    return json.loads(result_path.read_text(encoding="utf-8")), log
+    assert result is not None, f"Ecos driver wrote no result:\n{log[-4000:]}"
+    return result, log
 
 
 # ---------------------------------------------------------------------------------------------

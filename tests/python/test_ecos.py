@@ -22,7 +22,7 @@ from fmpy.model_description import ModelDescription, read_model_description
 
 from conftest import (
     BUNDLED_PROFILES,
-    FMU_FILE_NAME,
+    FMU_FILE_NAMES,
     WRC_FMU_FILE_NAME,
     PackerRun,
     Slave,
@@ -53,7 +53,7 @@ def experiment(md: ModelDescription) -> tuple[float, int]:
     return step, round((float(de.stopTime) - float(de.startTime)) / step)
 
 
-@pytest.mark.parametrize("file_name", [FMU_FILE_NAME, WRC_FMU_FILE_NAME])
+@pytest.mark.parametrize("file_name", FMU_FILE_NAMES)
 def test_default_experiment_in_ecos_matches_fmpy_bit_for_bit(file_name: str, tmp_path: Path) -> None:
     fmu = packed_fmu(file_name)
     md = read_model_description(str(fmu))
@@ -73,7 +73,7 @@ def test_default_experiment_in_ecos_matches_fmpy_bit_for_bit(file_name: str, tmp
     assert "error" not in log.lower(), log
 
 
-@pytest.mark.parametrize("file_name", [FMU_FILE_NAME, WRC_FMU_FILE_NAME])
+@pytest.mark.parametrize("file_name", FMU_FILE_NAMES)
 def test_input_sweep_in_ecos_matches_fmpy_bit_for_bit(file_name: str, tmp_path: Path) -> None:
     fmu = packed_fmu(file_name)
     md = read_model_description(str(fmu))

@@ -25,7 +25,6 @@ import json
 import math
 import re
 import subprocess
-import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Callable, Mapping
@@ -36,9 +35,18 @@ from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2Error, fmi2LastSuccessfulTime
 from fmpy.model_description import ModelDescription
-from fmpy.validation import validate_fmu
 
-from conftest import EXPECTED_FMI2_EXPORTS, LOG, STEP, Slave, bits, require_tool, slave_factory
+from conftest import (
+    LOG,
+    STEP,
+    Slave,
+    assert_exports_exactly_the_34_fmi2_functions,
+    assert_fmpy_validates,
+    bits,
+    require_tool,
+    run_libcosim,
+    slave_factory,
+)
 
 HERE = Path(__file__).resolve().parent
 REPO_ROOT = HERE.parents[1]
@@ -111,17 +119,7 @@ def simulate_reference(fmu_path: Path, params: Mapping[str, float | int], inputs
 
 
 def test_fmpy_validate_reports_no_problems(fmu_path: Path) -> None:
-    # FMPy 0.3.32's command line is `fmpy.cli` (`fmpy.command_line` does not exist in 0.3.32);
-    # it exits with the number of problems.
-    proc = subprocess.run(
-        [sys.executable, "-m", "fmpy.cli", "validate", str(fmu_path)],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
-    assert proc.returncode == 0, f"fmpy validate: exit {proc.returncode}\n{proc.stdout}\n{proc.stderr}"
-    assert "No problems found" in proc.stdout
-    assert validate_fmu(str(fmu_path)) == []
+    assert_fmpy_validates(fmu_path)
 
 
 def test_model_description_matches_json_source(model_description: ModelDescription) -> None:
@@ -145,14 +143,7 @@ def test_model_description_matches_json_source(model_description: ModelDescripti
 
 
 def test_shared_library_exports_exactly_34_fmi2_functions(shared_library: Path) -> None:
-    nm = require_tool("nm")
-    out = subprocess.run(
-        [nm, "-D", "--defined-only", str(shared_library)], capture_output=True, text=True, check=True
-    ).stdout
-    symbols = [line.split()[-1] for line in out.splitlines() if line.strip()]
-    fmi2 = sorted(s for s in symbols if s.startswith("fmi2"))
-    assert len(fmi2) == 34, fmi2
-    assert set(fmi2) == EXPECTED_FMI2_EXPORTS
+    assert_exports_exactly_the_34_fmi2_functions(shared_library)
 
 
 # glibc (libc, libm, the dynamic loader, and on glibc < 2.34 its split-out libpthread/libdl/librt),
@@ -390,17 +381,9 @@ def test_libcosim_two_instances_match_fmpy(fmu_path: Path, new_slave, tmp_path: 
         {"steps": 2, "set": {"left": {"eta": 1e-4}, "right": {"eta": -1e-3, "phi": -0.2}}},
     ]
     config = {"fmu": str(fmu_path), "step_ns": 1_000_000, "instances": instances, "phases": phases}
-    config_path, result_path = tmp_path / "config.json", tmp_path / "result.json"
-    config_path.write_text(json.dumps(config), encoding="utf-8")
-    # A subprocess: libcosim aborts its process when the FMU returns fmi2Error from fmi2GetReal.
-    proc = subprocess.run(
-        [sys.executable, str(HERE / "libcosim_driver.py"), str(config_path), str(result_path)],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    proc, result = run_libcosim(config, tmp_path)
     assert proc.returncode == 0, f"libcosim driver died (exit {proc.returncode}):\n{proc.stdout[-4000:]}\n{proc.stderr[-4000:]}"
-    result = json.loads(result_path.read_text(encoding="utf-8"))
+    assert result is not None, "libcosim driver wrote no result"
     assert [p["time_ns"] for p in result["phases"]] == [3_000_000, 5_000_000]
 
     for name, initial in instances.items():

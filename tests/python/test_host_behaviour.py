@@ -18,11 +18,8 @@ The libcosim and Ecos runs are subprocesses (``libcosim_driver.py``, ``ecos_driv
 
 from __future__ import annotations
 
-import json
 import math
 import signal
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -30,26 +27,12 @@ from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import fmi2Error
 
-from conftest import WRC_FMU_FILE_NAME, packed_fmu, run_ecos
+from conftest import WRC_FMU_FILE_NAME, packed_fmu, run_ecos, run_libcosim
 
-HERE = Path(__file__).resolve().parent
 OFF_RAIL = 0.045  # m: lateral shift with the right wheel on its flange tip (derailing)
 MISSING = "not_bundled.prw"
 Q_DEFAULT = 78_500.0  # N; the wheel loads' start value
 READ = {"Real": ["y", "right.Fy", "right.Fz", "left.Fz"], "Integer": ["right.nPatches"]}
-
-
-def run_libcosim(config: dict, tmp_path: Path) -> tuple[subprocess.CompletedProcess, dict | None]:
-    config_path, result_path = tmp_path / "libcosim_config.json", tmp_path / "libcosim_result.json"
-    config_path.write_text(json.dumps(config), encoding="utf-8")
-    proc = subprocess.run(
-        [sys.executable, str(HERE / "libcosim_driver.py"), str(config_path), str(result_path)],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    result = json.loads(result_path.read_text(encoding="utf-8")) if result_path.is_file() else None
-    return proc, result
 
 
 # ---------------------------------------------------------------------------------------------

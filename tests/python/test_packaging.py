@@ -27,7 +27,7 @@ from fmpy.model_description import ModelDescription, read_model_description
 
 from conftest import (
     BUNDLED_PROFILES,
-    FMU_FILE_NAME,
+    FMU_FILE_NAMES,
     WRC_FMU_FILE_NAME,
     PackerRun,
     Slave,
@@ -96,7 +96,7 @@ def test_the_archive_holds_one_library_in_the_linux64_folder(model: str) -> None
 
 
 def test_packer_bundles_the_resources_in_every_fmu(bundled_fmu_dir: PackerRun) -> None:
-    for file_name in (FMU_FILE_NAME, WRC_FMU_FILE_NAME):
+    for file_name in FMU_FILE_NAMES:
         fmu = bundled_fmu_dir.out_dir / file_name
         with zipfile.ZipFile(fmu) as z:
             for relative in BUNDLED_PROFILES:
@@ -160,6 +160,6 @@ def test_a_bare_name_that_is_not_bundled_lists_where_it_was_looked_for(
 
 
 def test_bundled_fmus_validate(bundled_fmu_dir: PackerRun) -> None:
-    for file_name in (FMU_FILE_NAME, WRC_FMU_FILE_NAME):
+    for file_name in FMU_FILE_NAMES:
         md = read_model_description(str(bundled_fmu_dir.out_dir / file_name), validate=True)
         assert md.coSimulation.modelIdentifier == file_name.removesuffix(".fmu")

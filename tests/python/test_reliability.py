@@ -36,7 +36,7 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave, fmi2Error, fmi2OK
 from fmpy.model_description import ModelDescription
 
-from conftest import REPO_ROOT, STEP, Slave, bits, data_file, slave_factory
+from conftest import STEP, Slave, bits, data_file, slave_factory
 
 
 # Inputs of the WheelRailContact random walk, in the order of `random_walk`'s columns.

@@ -33,9 +33,15 @@ from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import fmi2Discard, fmi2Error, fmi2LastSuccessfulTime, fmi2Terminated
 from fmpy.model_description import ModelDescription
-from fmpy.validation import validate_fmu
 
-from conftest import EXPECTED_FMI2_EXPORTS, REPO_ROOT, Slave, bits, data_file, require_tool, slave_factory
+from conftest import (
+    Slave,
+    assert_exports_exactly_the_34_fmi2_functions,
+    assert_fmpy_validates,
+    bits,
+    data_file,
+    slave_factory,
+)
 
 
 # Start values of the model description (modelDescription/WheelRailContact.json).
@@ -75,32 +81,11 @@ def side_outputs(names: list[str], side: str) -> list[str]:
 
 
 def test_fmpy_validate_reports_no_problems(wrc_fmu_path: Path) -> None:
-    # FMPy 0.3.32's command line is `fmpy.cli`; it exits with the number of problems.
-    proc = subprocess.run(
-        [sys.executable, "-m", "fmpy.cli", "validate", str(wrc_fmu_path)],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
-    assert proc.returncode == 0, f"fmpy validate: exit {proc.returncode}\n{proc.stdout}\n{proc.stderr}"
-    assert "No problems found" in proc.stdout
-    assert validate_fmu(str(wrc_fmu_path)) == []
+    assert_fmpy_validates(wrc_fmu_path)
 
 
-def test_shared_library_exports_exactly_34_fmi2_functions(
-    wrc_unzipdir: Path, wrc_model_description: ModelDescription
-) -> None:
-    identifier = wrc_model_description.coSimulation.modelIdentifier
-    library = wrc_unzipdir / "binaries" / "linux64" / f"{identifier}.so"
-    assert library.is_file(), f"the FMU has no binaries/linux64/{identifier}.so"
-    nm = require_tool("nm")
-    out = subprocess.run(
-        [nm, "-D", "--defined-only", str(library)], capture_output=True, text=True, check=True
-    ).stdout
-    symbols = [line.split()[-1] for line in out.splitlines() if line.strip()]
-    fmi2 = sorted(s for s in symbols if s.startswith("fmi2"))
-    assert len(fmi2) == 34, fmi2
-    assert set(fmi2) == EXPECTED_FMI2_EXPORTS
+def test_shared_library_exports_exactly_34_fmi2_functions(wrc_shared_library: Path) -> None:
+    assert_exports_exactly_the_34_fmi2_functions(wrc_shared_library)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -481,16 +466,6 @@ def test_central_case_area_and_pmax_through_the_fmu(new_wrc) -> None:
     assert pmax / 1e6 == pytest.approx(float(ref["pmax_MPa"]), rel=0.15)
 
 
-def test_normal_model_out_of_range_is_rejected_and_logged(new_wrc) -> None:
-    slave = new_wrc(initialize=False)
-    with pytest.raises(FMICallException):
-        slave.set(normalModel=7)
-    assert any(
-        re.search(r"\bnormalModel = 7 is outside the allowed range integer in \[1, 6\]", m.text)
-        for m in slave.errors()
-    ), slave.messages
-
-
 # ---------------------------------------------------------------------------------------------
 # 6. Tangential contact on non-elliptic patches (tangentialModel 1–4, planarPatch)
 
@@ -536,14 +511,15 @@ def test_pure_spin_through_the_fmu(new_wrc) -> None:
     assert out["right.p1.Mz"] == pytest.approx(float(ref["mn_Nmm"]) * 1e-3, rel=0.15)
 
 
-def test_tangential_model_out_of_range_is_rejected_and_logged(new_wrc) -> None:
+@pytest.mark.parametrize(
+    ("variable", "value", "largest"), [("normalModel", 7, 6), ("tangentialModel", 5, 4)]
+)
+def test_model_option_out_of_range_is_rejected_and_logged(new_wrc, variable: str, value: int, largest: int) -> None:
     slave = new_wrc(initialize=False)
     with pytest.raises(FMICallException):
-        slave.set(tangentialModel=5)
-    assert any(
-        re.search(r"\btangentialModel = 5 is outside the allowed range integer in \[1, 4\]", m.text)
-        for m in slave.errors()
-    ), slave.messages
+        slave.set(**{variable: value})
+    message = rf"\b{variable} = {value} is outside the allowed range integer in \[1, {largest}\]"
+    assert any(re.search(message, m.text) for m in slave.errors()), slave.messages
 
 
 def test_directional_derivatives_through_fmpy(new_wrc, wrc_model_description: ModelDescription) -> None:
