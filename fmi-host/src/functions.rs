@@ -51,7 +51,7 @@ macro_rules! functions {
         }
 
         /// The [`Functions`] of an FMU linked into this program:
-        /// `linked_functions!(my_crate::fmi::export)` names the module that defines the 34
+        /// `linked_functions!(my_crate::models::export)` names the module that defines the 34
         /// `fmi2*` functions (a signature that differs from the FMI 2.0 headers does not compile).
         #[macro_export]
         macro_rules! linked_functions {

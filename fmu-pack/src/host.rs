@@ -193,7 +193,7 @@ mod tests {
     /// linked into this test, its resources from `dir`), with wheelProfile = `wheel`; Err(log)
     /// when initialization fails.
     fn right_fy(dir: &Path, name: &str, wheel: &str) -> Result<f64, Vec<String>> {
-        let functions = fmi_host::linked_functions!(railcontact::fmi::export);
+        let functions = fmi_host::linked_functions!(railcontact::models::export);
         let resources = fmi_host::file_uri(&dir.join("resources"));
         let fmu = Fmu::linked(functions, INFO.model_description_xml, Some(resources)).unwrap();
         let f = fmu.instantiate(name).unwrap();

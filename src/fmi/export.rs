@@ -127,11 +127,6 @@ fn null_args(inst: &Instance, function: &str, n: usize, ptrs: &[bool]) -> bool {
     false
 }
 
-/// Models compiled into this library; `fmi2Instantiate` picks one by GUID.
-fn registry() -> &'static [&'static ModelInfo] {
-    crate::models::MODELS
-}
-
 // ---------------------------------------------------------------------------------------------
 // Inquire version numbers and platform
 
@@ -150,10 +145,14 @@ const _: fmi2GetVersionTYPE = Some(fmi2GetVersion);
 // ---------------------------------------------------------------------------------------------
 // Creation and destruction
 
+/// `fmi2Instantiate` over the models `registry` a library serves (its exported
+/// `fmi2Instantiate` passes them; the glue knows no model): picks the model by GUID.
+///
 /// # Safety
 /// FMI 2.0 host contract: strings NUL-terminated or NULL, `functions` valid or NULL.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2Instantiate(
+#[allow(clippy::too_many_arguments)]
+pub unsafe fn instantiate(
+    registry: &'static [&'static ModelInfo],
     instanceName: fmi2String,
     fmuType: fmi2Type,
     fmuGUID: fmi2String,
@@ -195,8 +194,8 @@ pub unsafe extern "C" fn fmi2Instantiate(
             );
             return std::ptr::null_mut();
         }
-        let Some(info) = guid.and_then(|g| registry().iter().find(|m| m.guid == g)) else {
-            let known: Vec<String> = registry()
+        let Some(info) = guid.and_then(|g| registry.iter().find(|m| m.guid == g)) else {
+            let known: Vec<String> = registry
                 .iter()
                 .map(|m| format!("{} {}", m.model_identifier, m.guid))
                 .collect();
@@ -224,7 +223,6 @@ pub unsafe extern "C" fn fmi2Instantiate(
     }));
     result.unwrap_or(std::ptr::null_mut())
 }
-const _: fmi2InstantiateTYPE = Some(fmi2Instantiate);
 
 /// # Safety
 /// `c` must come from `fmi2Instantiate` and not have been freed.

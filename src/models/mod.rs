@@ -6,6 +6,7 @@ use crate::fmi::model::{ModelError, ModelInfo};
 use crate::fmi::variables::{RealVar, Values};
 use crate::tangential::fastsim::{FastsimSettings, Flexibility, MarchScheme, TractionBound};
 
+pub mod export;
 pub mod hertz_contact;
 pub mod wheel_rail_contact;
 

@@ -18,7 +18,7 @@ pub const NO_RESOURCES: &str = "file:///nonexistent/resources";
 
 /// The FMU of `info`, linked, described by its generated model description.
 pub fn fmu(info: &ModelInfo) -> Arc<Fmu> {
-    let functions = fmi_host::linked_functions!(railcontact::fmi::export);
+    let functions = fmi_host::linked_functions!(railcontact::models::export);
     Fmu::linked(
         functions,
         info.model_description_xml,
