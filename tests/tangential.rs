@@ -95,6 +95,18 @@ fn right_total(out: &WheelsetResult) -> PatchResult {
     side.patches[0]
 }
 
+/// ANALYN's wheelsets with its own FASTSIM pairing and with FaStrip, on the planar and the
+/// non-planar patch, those that `keep`: (tangential model, planar, wheelset).
+fn analyn_wheelsets(
+    keep: impl Fn(TangentialModel, bool) -> bool,
+) -> impl Iterator<Item = (TangentialModel, bool, Wheelset)> {
+    [TangentialModel::ModelDefault, TangentialModel::Fastrip]
+        .into_iter()
+        .flat_map(|t| [true, false].map(|planar| (t, planar)))
+        .filter(move |&(t, planar)| keep(t, planar))
+        .map(|(t, planar)| (t, planar, wheelset(NormalModel::Analyn, t, planar)))
+}
+
 /// The options the required accuracy is checked on (planar patch — the set-up of the half-space
 /// reference): ANALYN with FaStrip (`tangentialModel` = 3, the closest) and with its own FASTSIM
 /// pairing (`tangentialModel` = 1, equivalent ellipse).
@@ -236,13 +248,7 @@ fn mirrored_creepages_and_wheels_mirror_the_forces() {
     // both wheels, right(ξ, η, φ) = left(ξ, −η, −φ) with Fy and Mz negated; ξ → −ξ alone negates
     // Fx. Tolerance: the sides are solved independently on mirrored profile samples (round-off of
     // the mirrored set-up), 1e−6 of μN.
-    for (t, planar) in [
-        (TangentialModel::ModelDefault, true),
-        (TangentialModel::ModelDefault, false),
-        (TangentialModel::Fastrip, true),
-        (TangentialModel::Fastrip, false),
-    ] {
-        let mut ws = wheelset(NormalModel::Analyn, t, planar);
+    for (_, planar, mut ws) in analyn_wheelsets(|_, _| true) {
         let k = creepage(1e-3, 5e-4, 0.05);
         let a = solve(&mut ws, k);
         let b = solve(&mut ws, creepage(k.xi, -k.eta, -k.phi));
@@ -272,12 +278,9 @@ fn full_sliding_reaches_mu_n() {
     // element midpoints (+0.34 % at the default 20 elements per strip, +0.12 % at 40, measured);
     // non-planar, the strips' forces also turn by their angle to the patch (cos of ≲ 2°:
     // −0.06 %). Tolerance 2e−3, FaStrip 5e−3.
-    for (t, planar) in [
-        (TangentialModel::ModelDefault, true),
-        (TangentialModel::ModelDefault, false),
-        (TangentialModel::Fastrip, true),
-    ] {
-        let mut ws = wheelset(NormalModel::Analyn, t, planar);
+    // (FaStrip on the non-planar patch left out.)
+    for (t, planar, mut ws) in analyn_wheelsets(|t, planar| planar || t != TangentialModel::Fastrip)
+    {
         let p = right_total(&solve(&mut ws, creepage(0.3, 0.4, 0.0)));
         let ratio = p.fx.hypot(p.fy) / (MU * p.fn_);
         let tol = if t == TangentialModel::Fastrip {
