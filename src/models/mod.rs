@@ -90,3 +90,55 @@ pub(crate) fn set_output(values: &mut Values, v: RealVar, x: f64) -> Result<(), 
     values.set_real(v, x);
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn error_of(r: Result<FastsimSettings, ModelError>) -> String {
+        match r {
+            Err(ModelError::Error(message)) => message,
+            other => panic!("expected an error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn fastsim_options_are_one_based_and_a_bad_code_names_the_valid_ones() {
+        let s = fastsim_settings(2, 3, 10, 11, 2).unwrap();
+        assert_eq!(
+            (s.bound, s.flexibility, s.scheme, s.nx, s.ny),
+            (
+                TractionBound::Parabolic,
+                Flexibility::Blended,
+                MarchScheme::Contact,
+                10,
+                11
+            )
+        );
+        let s = fastsim_settings(1, 1, 1, 1, 1).unwrap();
+        assert_eq!(
+            (s.bound, s.flexibility, s.scheme),
+            (
+                TractionBound::Elliptic,
+                Flexibility::Three,
+                MarchScheme::Midpoint
+            )
+        );
+        assert_eq!(
+            error_of(fastsim_settings(1, 1, 10, 10, 3)),
+            "fastsimScheme = 3 is not 1 or 2"
+        );
+        assert_eq!(
+            error_of(fastsim_settings(0, 1, 10, 10, 1)),
+            "tractionBound = 0 is not 1 or 2"
+        );
+        assert_eq!(
+            error_of(fastsim_settings(1, -1, 10, 10, 1)),
+            "flexibility = -1 is not 1, 2 or 3"
+        );
+        assert_eq!(
+            error_of(fastsim_settings(1, 1, 0, 10, 1)),
+            "nx = 0 must be >= 1"
+        );
+    }
+}
