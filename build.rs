@@ -339,22 +339,15 @@ fn xml_body(model: &Model) -> String {
         if let Some(u) = &v.unit {
             write!(attrs, " unit=\"{}\"", xml_escape(u)).unwrap();
         }
-        let int = v.ty == "Integer";
-        if let Some(lo) = v.min {
-            let t = if int {
-                format!("{}", lo as i64)
-            } else {
-                format_real(lo)
-            };
-            write!(attrs, " min=\"{t}\"").unwrap();
-        }
-        if let Some(hi) = v.max {
-            let t = if int {
-                format!("{}", hi as i64)
-            } else {
-                format_real(hi)
-            };
-            write!(attrs, " max=\"{t}\"").unwrap();
+        for (attr, bound) in [("min", v.min), ("max", v.max)] {
+            if let Some(bound) = bound {
+                let t = if v.ty == "Integer" {
+                    format!("{}", bound as i64)
+                } else {
+                    format_real(bound)
+                };
+                write!(attrs, " {attr}=\"{t}\"").unwrap();
+            }
         }
         writeln!(x, "      <{}{attrs}/>\n    </ScalarVariable>", v.ty).unwrap();
     }

@@ -7,7 +7,7 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion};
 
 use railcontact::normal::hertz::hertz_from_approach;
 use railcontact::normal::NormalModel;
-use railcontact::tangential::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
+use railcontact::tangential::fastsim::{Fastsim, FastsimSettings};
 use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::{Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings};
 
@@ -41,19 +41,7 @@ fn bench_point(c: &mut Criterion) {
             ..Default::default()
         })
         .unwrap();
-        let contact = EllipticContact {
-            a: 8e-3,
-            b: 4e-3,
-            normal_force: 82e3,
-            shear_modulus: 82e9,
-            nu: 0.28,
-            mu: 0.3,
-        };
-        let k = Creepage {
-            xi: 0.0,
-            eta: -6.25e-4,
-            phi: 0.625,
-        };
+        let (contact, k) = (common::FASTSIM_CONTACT, common::FASTSIM_CREEPAGE);
         c.bench_function(&format!("fastsim_{n}x{n}"), |b| {
             b.iter(|| f.solve(black_box(&contact), black_box(&k), 1.0).unwrap())
         });

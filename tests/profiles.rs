@@ -4,6 +4,10 @@
 //! temporary directory; every error message must name the file, the line (where one is to blame)
 //! and the reason, and nothing may panic.
 
+#[path = "common/lcg.rs"]
+mod lcg;
+
+use lcg::Lcg;
 use std::path::{Path, PathBuf};
 
 use railcontact::geometry::profile::{
@@ -274,18 +278,6 @@ fn malformed_inputs_give_located_errors() {
     );
 }
 
-/// Deterministic byte generator (64-bit LCG) for the no-panic sweep.
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        self.0 >> 33
-    }
-}
-
 /// Random bytes, random text and mutated benchmark files through every reader: never a panic.
 #[test]
 fn no_panic_on_arbitrary_input() {
@@ -294,17 +286,19 @@ fn no_panic_on_arbitrary_input() {
     let alphabet = b"0123456789.-+eE \t,;\n!'=\"abnNiI";
     for case in 0..300 {
         let bytes: Vec<u8> = match case % 3 {
-            0 => (0..(rng.next() % 2000)).map(|_| rng.next() as u8).collect(),
-            1 => (0..(rng.next() % 2000))
-                .map(|_| alphabet[(rng.next() as usize) % alphabet.len()])
+            0 => (0..(rng.next_u31() % 2000))
+                .map(|_| rng.next_u31() as u8)
+                .collect(),
+            1 => (0..(rng.next_u31() % 2000))
+                .map(|_| alphabet[(rng.next_u31() as usize) % alphabet.len()])
                 .collect(),
             _ => {
                 let mut b = base.clone();
-                for _ in 0..(1 + rng.next() % 20) {
-                    let i = (rng.next() as usize) % b.len();
-                    b[i] = alphabet[(rng.next() as usize) % alphabet.len()];
+                for _ in 0..(1 + rng.next_u31() % 20) {
+                    let i = (rng.next_u31() as usize) % b.len();
+                    b[i] = alphabet[(rng.next_u31() as usize) % alphabet.len()];
                 }
-                b.truncate((rng.next() as usize) % (b.len() + 1));
+                b.truncate((rng.next_u31() as usize) % (b.len() + 1));
                 b
             }
         };
@@ -345,7 +339,7 @@ fn smoothing_a_noisy_rail_restores_the_crown_curvature() {
         .map(|v| {
             // Sum of 12 uniforms − 6: approximately standard normal.
             let g: f64 = (0..12)
-                .map(|_| (rng.next() as f64) / (1u64 << 31) as f64)
+                .map(|_| (rng.next_u31() as f64) / (1u64 << 31) as f64)
                 .sum::<f64>()
                 - 6.0;
             v + sigma * g
@@ -438,7 +432,7 @@ fn clean_profiles_pass_the_plausibility_checks() {
     let mut rng = Lcg(2024);
     let mut scatter = move || {
         let g: f64 = (0..12)
-            .map(|_| (rng.next() as f64) / (1u64 << 31) as f64)
+            .map(|_| (rng.next_u31() as f64) / (1u64 << 31) as f64)
             .sum::<f64>()
             - 6.0;
         2e-3 * g // mm

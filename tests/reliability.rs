@@ -348,106 +348,71 @@ fn bad_profiles_fail_initialization_with_variable_file_line_and_reason() {
         .to_string_lossy()
         .into_owned();
     let directory = dir.to_string_lossy().into_owned();
-    let cases: Vec<(&str, String, Vec<String>)> = vec![
-        (
+    // (variable, value, fragments the error must name besides "variable = value").
+    let value_case = |var: &'static str, spec: &str, parts: &[&str]| {
+        let parts: Vec<String> = parts.iter().map(|p| p.to_string()).collect();
+        (var, spec.to_string(), parts)
+    };
+    // A file that is read but refused: its path is named too.
+    let file_case = |var: &'static str, path: &str, parts: &[&str]| {
+        let (var, spec, rest) = value_case(var, path, parts);
+        (var, spec, [vec![path.to_string()], rest].concat())
+    };
+    let cases = [
+        file_case(
             "wheelProfile",
-            malformed.clone(),
-            vec![
-                malformed.clone(),
-                "line 60".into(),
-                "non-numeric value \"2.45x3554E+01\"".into(),
+            &malformed,
+            &["line 60", "non-numeric value \"2.45x3554E+01\""],
+        ),
+        file_case("wheelProfile", &unsorted, &["line 4", "non-monotonic"]),
+        file_case("railProfile", &few, &["too few points (3"]),
+        file_case("railProfile", &binary, &["line 2", "binary data"]),
+        file_case(
+            "railProfile",
+            &open_block,
+            &["line 1", "no matching 'point.end'"],
+        ),
+        file_case("wheelProfile", &nan, &["line 3", "not a finite number"]),
+        file_case("wheelProfile", &empty, &["missing point block"]),
+        file_case(
+            "wheelProfile",
+            &unmirrored,
+            &[
+                "the flange (its tip 30.6 mm high at y = +54.9 mm) lies on the field side",
+                "the profile is not mirrored",
+                "toggle mirror.y",
             ],
         ),
-        (
-            "wheelProfile",
-            unsorted.clone(),
-            vec![unsorted.clone(), "line 4".into(), "non-monotonic".into()],
-        ),
-        (
+        file_case(
             "railProfile",
-            few.clone(),
-            vec![few.clone(), "too few points (3".into()],
-        ),
-        (
-            "railProfile",
-            binary.clone(),
-            vec![binary.clone(), "line 2".into(), "binary data".into()],
-        ),
-        (
-            "railProfile",
-            open_block.clone(),
-            vec![
-                open_block.clone(),
-                "line 1".into(),
-                "no matching 'point.end'".into(),
+            &stepped,
+            &[
+                "a step or spike at y = ",
+                "set profileSmoothing = 0.0005 m or more",
             ],
         ),
-        (
+        file_case("railProfile", &metres, &["the values look like metres"]),
+        file_case(
             "wheelProfile",
-            nan.clone(),
-            vec![nan.clone(), "line 3".into(), "not a finite number".into()],
+            &missing,
+            &["unknown built-in profile", "no such file"],
         ),
-        (
+        value_case("railProfile", &directory, &["not a regular file"]),
+        value_case(
             "wheelProfile",
-            empty.clone(),
-            vec![empty.clone(), "missing point block".into()],
+            "S9999",
+            &["unknown built-in profile \"S9999\"", "S1002, UIC60, 60E1"],
         ),
-        (
+        value_case("wheelProfile", "", &["empty name"]),
+        value_case(
             "wheelProfile",
-            unmirrored.clone(),
-            vec![
-                unmirrored.clone(),
-                "the flange (its tip 30.6 mm high at y = +54.9 mm) lies on the field side".into(),
-                "the profile is not mirrored".into(),
-                "toggle mirror.y".into(),
-            ],
+            "UIC60",
+            &["rail profile but a wheel profile is required"],
         ),
-        (
+        value_case(
             "railProfile",
-            stepped.clone(),
-            vec![
-                stepped.clone(),
-                "a step or spike at y = ".into(),
-                "set profileSmoothing = 0.0005 m or more".into(),
-            ],
-        ),
-        (
-            "railProfile",
-            metres.clone(),
-            vec![metres.clone(), "the values look like metres".into()],
-        ),
-        (
-            "wheelProfile",
-            missing.clone(),
-            vec![
-                missing.clone(),
-                "unknown built-in profile".into(),
-                "no such file".into(),
-            ],
-        ),
-        (
-            "railProfile",
-            directory.clone(),
-            vec!["not a regular file".into()],
-        ),
-        (
-            "wheelProfile",
-            "S9999".into(),
-            vec![
-                "unknown built-in profile \"S9999\"".into(),
-                "S1002, UIC60, 60E1".into(),
-            ],
-        ),
-        ("wheelProfile", "".into(), vec!["empty name".into()]),
-        (
-            "wheelProfile",
-            "UIC60".into(),
-            vec!["rail profile but a wheel profile is required".into()],
-        ),
-        (
-            "railProfile",
-            "S1002".into(),
-            vec!["wheel profile but a rail profile is required".into()],
+            "S1002",
+            &["wheel profile but a rail profile is required"],
         ),
     ];
     for (i, (var, spec, parts)) in cases.iter().enumerate() {
@@ -526,6 +491,13 @@ fn wheels_that_do_not_fit_between_the_rails_fail_initialization() {
 const NORMAL_MODELS: std::ops::RangeInclusive<i32> = 1..=6;
 const TANGENTIAL_MODELS: std::ops::RangeInclusive<i32> = 1..=4;
 
+/// Every (normalModel, tangentialModel) pair, with the context naming it in messages.
+fn model_pairs() -> impl Iterator<Item = (i32, i32, String)> {
+    NORMAL_MODELS.flat_map(|nm| {
+        TANGENTIAL_MODELS.map(move |tm| (nm, tm, format!("normalModel {nm}, tangentialModel {tm}")))
+    })
+}
+
 fn models(nm: i32, tm: i32) -> Vec<(&'static str, P)> {
     vec![("normalModel", P::I(nm)), ("tangentialModel", P::I(tm))]
 }
@@ -571,91 +543,85 @@ fn traction_ratio(f: &Instance, side: &str, mu: f64) -> f64 {
 
 #[test]
 fn lift_off_and_re_contact() {
-    for nm in NORMAL_MODELS {
-        for tm in TANGENTIAL_MODELS {
-            let ctx = format!("normalModel {nm}, tangentialModel {tm}");
-            let mut run = Run::new(initialized(
-                wrc(),
-                &name(&[&"liftOff", &nm, &tm]),
-                &models(nm, tm),
-            ));
-            run.step_ok(&[("y", 0.002)]);
-            assert_balanced(&run.f, "left", Q, &ctx);
-            // Left wheel lifted: no patch, every left output but z zero; the right wheel carries.
-            run.step_ok(&[("Qleft", 0.0)]);
-            assert_eq!(run.f.integer("left.nPatches"), 0, "{ctx}");
-            for var in side_vars("left.") {
-                if var != "left.z" && var != "left.nPatches" {
-                    assert_eq!(run.f.real(var), 0.0, "{var} ({ctx})");
-                }
+    for (nm, tm, ctx) in model_pairs() {
+        let mut run = Run::new(initialized(
+            wrc(),
+            &name(&[&"liftOff", &nm, &tm]),
+            &models(nm, tm),
+        ));
+        run.step_ok(&[("y", 0.002)]);
+        assert_balanced(&run.f, "left", Q, &ctx);
+        // Left wheel lifted: no patch, every left output but z zero; the right wheel carries.
+        run.step_ok(&[("Qleft", 0.0)]);
+        assert_eq!(run.f.integer("left.nPatches"), 0, "{ctx}");
+        for var in side_vars("left.") {
+            if var != "left.z" && var != "left.nPatches" {
+                assert_eq!(run.f.real(var), 0.0, "{var} ({ctx})");
             }
-            assert_balanced(&run.f, "right", Q, &ctx);
-            // Both lifted.
-            run.step_ok(&[("Qright", 0.0)]);
-            assert_eq!(
-                (
-                    run.f.integer("left.nPatches"),
-                    run.f.integer("right.nPatches")
-                ),
-                (0, 0)
-            );
-            // Re-contact: as a fresh instance in that pose.
-            run.step_ok(&[("Qleft", Q), ("Qright", Q)]);
-            let fresh = initialized(wrc(), &name(&[&"liftOffFresh", &nm, &tm]), &models(nm, tm));
-            let mut fresh = Run::new(fresh);
-            fresh.step_ok(&[("y", 0.002)]);
-            for side in ["left", "right"] {
-                assert!(run.f.integer(&format!("{side}.nPatches")) >= 1, "{ctx}");
-                assert_balanced(&run.f, side, Q, &ctx);
-                for k in 1..=3 {
-                    let var = format!("{side}.p{k}.contactAngle");
-                    assert!(
-                        (run.f.real(&var) - fresh.f.real(&var)).abs() < 1e-9,
-                        "{var} after re-contact ({ctx})"
-                    );
-                }
-            }
-            assert!(run.f.errors().is_empty());
         }
+        assert_balanced(&run.f, "right", Q, &ctx);
+        // Both lifted.
+        run.step_ok(&[("Qright", 0.0)]);
+        assert_eq!(
+            (
+                run.f.integer("left.nPatches"),
+                run.f.integer("right.nPatches")
+            ),
+            (0, 0)
+        );
+        // Re-contact: as a fresh instance in that pose.
+        run.step_ok(&[("Qleft", Q), ("Qright", Q)]);
+        let fresh = initialized(wrc(), &name(&[&"liftOffFresh", &nm, &tm]), &models(nm, tm));
+        let mut fresh = Run::new(fresh);
+        fresh.step_ok(&[("y", 0.002)]);
+        for side in ["left", "right"] {
+            assert!(run.f.integer(&format!("{side}.nPatches")) >= 1, "{ctx}");
+            assert_balanced(&run.f, side, Q, &ctx);
+            for k in 1..=3 {
+                let var = format!("{side}.p{k}.contactAngle");
+                assert!(
+                    (run.f.real(&var) - fresh.f.real(&var)).abs() < 1e-9,
+                    "{var} after re-contact ({ctx})"
+                );
+            }
+        }
+        assert!(run.f.errors().is_empty());
     }
 }
 
 #[test]
 fn tiny_and_large_loads() {
-    for nm in NORMAL_MODELS {
-        for tm in TANGENTIAL_MODELS {
-            let ctx = format!("normalModel {nm}, tangentialModel {tm}");
-            let mut run = Run::new(initialized(
-                wrc(),
-                &name(&[&"loads", &nm, &tm]),
-                &models(nm, tm),
-            ));
-            for q in [1e-3, 1.0, 1e3, Q, 3e5] {
-                run.step_ok(&[("y", 0.002), ("Qleft", q), ("Qright", q)]);
-                for side in ["left", "right"] {
-                    assert_balanced(&run.f, side, q, &format!("{ctx}, Q = {q}"));
-                    let n = run.f.integer(&format!("{side}.nPatches"));
-                    assert!((0..=3).contains(&n));
-                    for k in 1..=n {
-                        assert!(
-                            run.f.real(&format!("{side}.p{k}.area")) > 0.0,
-                            "{ctx}, Q = {q}"
-                        );
-                    }
+    for (nm, tm, ctx) in model_pairs() {
+        let mut run = Run::new(initialized(
+            wrc(),
+            &name(&[&"loads", &nm, &tm]),
+            &models(nm, tm),
+        ));
+        for q in [1e-3, 1.0, 1e3, Q, 3e5] {
+            run.step_ok(&[("y", 0.002), ("Qleft", q), ("Qright", q)]);
+            for side in ["left", "right"] {
+                assert_balanced(&run.f, side, q, &format!("{ctx}, Q = {q}"));
+                let n = run.f.integer(&format!("{side}.nPatches"));
+                assert!((0..=3).contains(&n));
+                for k in 1..=n {
+                    assert!(
+                        run.f.real(&format!("{side}.p{k}.area")) > 0.0,
+                        "{ctx}, Q = {q}"
+                    );
                 }
             }
-            // The largest allowed load, 10 MN: the documented status (fmi2Warning: the approach,
-            // 1.7 mm with Hertz, is beyond the 1 mm of `railcontact::wheelset::validity`), a message
-            // naming the load, and finite outputs.
-            let s = run.step(&[("Qleft", 1e7), ("Qright", 1e7)]);
-            assert_eq!(s, WARNING, "{ctx}: {:?}", run.f.messages());
-            run.f.assert_warning_logged(&[
-                "implausible contact state",
-                "limit",
-                "= 10000000 N is far beyond wheel loads",
-            ]);
-            run.f.outputs();
         }
+        // The largest allowed load, 10 MN: the documented status (fmi2Warning: the approach,
+        // 1.7 mm with Hertz, is beyond the 1 mm of `railcontact::wheelset::validity`), a message
+        // naming the load, and finite outputs.
+        let s = run.step(&[("Qleft", 1e7), ("Qright", 1e7)]);
+        assert_eq!(s, WARNING, "{ctx}: {:?}", run.f.messages());
+        run.f.assert_warning_logged(&[
+            "implausible contact state",
+            "limit",
+            "= 10000000 N is far beyond wheel loads",
+        ]);
+        run.f.outputs();
     }
 }
 
@@ -812,79 +778,73 @@ fn subnormal_and_tiny_loads_return() {
 
 #[test]
 fn standstill_gives_finite_creepages_and_a_spinning_wheel_slides() {
-    for nm in NORMAL_MODELS {
-        for tm in TANGENTIAL_MODELS {
-            let ctx = format!("normalModel {nm}, tangentialModel {tm}");
-            let mut run = Run::new(initialized(
-                wrc(),
-                &name(&[&"standstill", &nm, &tm]),
-                &models(nm, tm),
-            ));
-            // At rest: no creepage, no creep force (reference speed 0.01 m/s, docs/conventions.md).
-            run.step_ok(&[("y", 0.002), ("vx", 0.0), ("omega", 0.0)]);
-            for side in ["left", "right"] {
-                assert_eq!(run.f.real(&format!("{side}.Fx")), 0.0, "{ctx}");
-                assert_eq!(run.f.real(&format!("{side}.p1.xi")), 0.0, "{ctx}");
-            }
-            // A wheel spinning at standstill is in full sliding: |F| = μ Fn.
-            run.step_ok(&[("omega", 5.0)]);
-            for side in ["left", "right"] {
-                let r = traction_ratio(&run.f, side, 0.3);
-                assert!(
-                    (0.95..=COULOMB).contains(&r),
-                    "{side}: |F|/μFn = {r} ({ctx})"
-                );
-                // Friction opposes the slip: the force has the opposite sign of the creepage.
-                let (xi, fx) = (
-                    run.f.real(&format!("{side}.p1.xi")),
-                    run.f.real(&format!("{side}.Fx")),
-                );
-                assert!(
-                    xi.abs() > 1.0 && xi * fx < 0.0,
-                    "{side}: xi = {xi}, Fx = {fx} ({ctx})"
-                );
-            }
-            // Backwards and very fast: still finite.
-            run.step_ok(&[("vx", -30.0), ("omega", -65.0)]);
-            run.step_ok(&[("vx", 1000.0), ("omega", 10000.0)]);
+    for (nm, tm, ctx) in model_pairs() {
+        let mut run = Run::new(initialized(
+            wrc(),
+            &name(&[&"standstill", &nm, &tm]),
+            &models(nm, tm),
+        ));
+        // At rest: no creepage, no creep force (reference speed 0.01 m/s, docs/conventions.md).
+        run.step_ok(&[("y", 0.002), ("vx", 0.0), ("omega", 0.0)]);
+        for side in ["left", "right"] {
+            assert_eq!(run.f.real(&format!("{side}.Fx")), 0.0, "{ctx}");
+            assert_eq!(run.f.real(&format!("{side}.p1.xi")), 0.0, "{ctx}");
         }
+        // A wheel spinning at standstill is in full sliding: |F| = μ Fn.
+        run.step_ok(&[("omega", 5.0)]);
+        for side in ["left", "right"] {
+            let r = traction_ratio(&run.f, side, 0.3);
+            assert!(
+                (0.95..=COULOMB).contains(&r),
+                "{side}: |F|/μFn = {r} ({ctx})"
+            );
+            // Friction opposes the slip: the force has the opposite sign of the creepage.
+            let (xi, fx) = (
+                run.f.real(&format!("{side}.p1.xi")),
+                run.f.real(&format!("{side}.Fx")),
+            );
+            assert!(
+                xi.abs() > 1.0 && xi * fx < 0.0,
+                "{side}: xi = {xi}, Fx = {fx} ({ctx})"
+            );
+        }
+        // Backwards and very fast: still finite.
+        run.step_ok(&[("vx", -30.0), ("omega", -65.0)]);
+        run.step_ok(&[("vx", 1000.0), ("omega", 10000.0)]);
     }
 }
 
 #[test]
 fn creepage_far_into_saturation_is_bounded_by_friction() {
-    for nm in NORMAL_MODELS {
-        for tm in TANGENTIAL_MODELS {
-            let ctx = format!("normalModel {nm}, tangentialModel {tm}");
-            let mut params = models(nm, tm);
-            params.push(("creepageMode", P::I(2)));
-            params.push(("planarPatch", P::B(tm % 2 == 0)));
-            let mut run = Run::new(initialized(
-                wrc(),
-                &name(&[&"saturation", &nm, &tm]),
-                &params,
-            ));
-            for (xi, eta, phi) in [
-                (10.0, 0.0, 0.0),
-                (0.0, -10.0, 0.0),
-                (-10.0, 10.0, 1000.0),
-                (0.0, 0.0, -1000.0),
-            ] {
-                run.step_ok(&[("y", 0.002), ("xi", xi), ("eta", eta), ("phi", phi)]);
-                for side in ["left", "right"] {
-                    let r = traction_ratio(&run.f, side, 0.3);
-                    assert!(
-                        r <= COULOMB,
-                        "{side}: |F|/μFn = {r} ({ctx}, {xi} {eta} {phi})"
-                    );
-                    if phi == 0.0 {
-                        assert!(r >= 0.95, "{side}: |F|/μFn = {r} ({ctx}, {xi} {eta})");
-                    }
-                    assert_balanced(&run.f, side, Q, &ctx);
+    for (nm, tm, ctx) in model_pairs() {
+        let mut params = models(nm, tm);
+        params.push(("creepageMode", P::I(2)));
+        params.push(("planarPatch", P::B(tm % 2 == 0)));
+        let mut run = Run::new(initialized(
+            wrc(),
+            &name(&[&"saturation", &nm, &tm]),
+            &params,
+        ));
+        for (xi, eta, phi) in [
+            (10.0, 0.0, 0.0),
+            (0.0, -10.0, 0.0),
+            (-10.0, 10.0, 1000.0),
+            (0.0, 0.0, -1000.0),
+        ] {
+            run.step_ok(&[("y", 0.002), ("xi", xi), ("eta", eta), ("phi", phi)]);
+            for side in ["left", "right"] {
+                let r = traction_ratio(&run.f, side, 0.3);
+                assert!(
+                    r <= COULOMB,
+                    "{side}: |F|/μFn = {r} ({ctx}, {xi} {eta} {phi})"
+                );
+                if phi == 0.0 {
+                    assert!(r >= 0.95, "{side}: |F|/μFn = {r} ({ctx}, {xi} {eta})");
                 }
-                if xi > 0.0 {
-                    assert!(run.f.real("right.p1.Fx") < 0.0, "rail pushes back ({ctx})");
-                }
+                assert_balanced(&run.f, side, Q, &ctx);
+            }
+            if xi > 0.0 {
+                assert!(run.f.real("right.p1.Fx") < 0.0, "rail pushes back ({ctx})");
             }
         }
     }
@@ -929,24 +889,21 @@ fn ramp_until_discard(run: &mut Run, ys: &[f64], yaw: f64, ctx: &str) -> f64 {
 #[test]
 fn flange_climb_towards_and_past_the_end_of_the_profile_discards() {
     let ys: Vec<f64> = (0..=50).map(|i| i as f64 * 1e-3).collect();
-    for nm in NORMAL_MODELS {
-        for tm in TANGENTIAL_MODELS {
-            let ctx = format!("normalModel {nm}, tangentialModel {tm}");
-            let f = instantiate(wrc(), &name(&[&"climb", &nm, &tm]));
-            for (var, v) in models(nm, tm) {
-                assert_eq!(set(&f, var, &v), OK);
-            }
-            assert_eq!(f.setup_experiment(0.0, Some(1.0)), OK);
-            assert_eq!(f.enter_initialization(), OK);
-            assert_eq!(f.exit_initialization(), OK);
-            let mut run = Run::new(f);
-            let good = ramp_until_discard(&mut run, &ys, 0.0, &ctx);
-            assert!(good >= 0.008, "discarded already after y = {good} ({ctx})");
-            assert_eq!(run.f.terminate(), OK);
-            assert_eq!(run.f.reset(), OK);
-            run.f.init();
-            assert_eq!(run.f.step(0.0, H), OK, "{ctx}: usable after reset");
+    for (nm, tm, ctx) in model_pairs() {
+        let f = instantiate(wrc(), &name(&[&"climb", &nm, &tm]));
+        for (var, v) in models(nm, tm) {
+            assert_eq!(set(&f, var, &v), OK);
         }
+        assert_eq!(f.setup_experiment(0.0, Some(1.0)), OK);
+        assert_eq!(f.enter_initialization(), OK);
+        assert_eq!(f.exit_initialization(), OK);
+        let mut run = Run::new(f);
+        let good = ramp_until_discard(&mut run, &ys, 0.0, &ctx);
+        assert!(good >= 0.008, "discarded already after y = {good} ({ctx})");
+        assert_eq!(run.f.terminate(), OK);
+        assert_eq!(run.f.reset(), OK);
+        run.f.init();
+        assert_eq!(run.f.step(0.0, H), OK, "{ctx}: usable after reset");
     }
 }
 
@@ -1000,23 +957,21 @@ fn conformal_contact() {
     let dir = temp_dir("conformal");
     for radius in [300.0, 250.0, 150.0] {
         let wheel = hollow_wheel(&dir, radius);
-        for nm in NORMAL_MODELS {
-            for tm in TANGENTIAL_MODELS {
-                let ctx = format!("hollow R{radius}, normalModel {nm}, tangentialModel {tm}");
-                let mut params = models(nm, tm);
-                params.push(("wheelProfile", P::S(wheel.clone())));
-                params.push(("railInclination", P::R(0.0)));
-                let mut run = Run::new(initialized(
-                    wrc(),
-                    &name(&[&"conformal", &radius, &nm, &tm]),
-                    &params,
-                ));
-                for y in [0.0, 0.001, 0.003] {
-                    run.step_ok(&[("y", y)]);
-                    for side in ["left", "right"] {
-                        assert_balanced(&run.f, side, Q, &ctx);
-                        assert!(run.f.real(&format!("{side}.p1.area")) > 0.0, "{ctx}");
-                    }
+        for (nm, tm, ctx) in model_pairs() {
+            let ctx = format!("hollow R{radius}, {ctx}");
+            let mut params = models(nm, tm);
+            params.push(("wheelProfile", P::S(wheel.clone())));
+            params.push(("railInclination", P::R(0.0)));
+            let mut run = Run::new(initialized(
+                wrc(),
+                &name(&[&"conformal", &radius, &nm, &tm]),
+                &params,
+            ));
+            for y in [0.0, 0.001, 0.003] {
+                run.step_ok(&[("y", y)]);
+                for side in ["left", "right"] {
+                    assert_balanced(&run.f, side, Q, &ctx);
+                    assert!(run.f.real(&format!("{side}.p1.area")) > 0.0, "{ctx}");
                 }
             }
         }
@@ -1579,15 +1534,27 @@ fn run_alone(
     walk(&f, &mut PoseWalk::new(wrc(), seed), 0, steps)
 }
 
+/// [`run_alone`] of each configuration.
+fn run_each_alone(configs: &[(i32, i32, u64)], steps: usize, label: &str) -> Vec<Vec<Vec<f64>>> {
+    configs
+        .iter()
+        .enumerate()
+        .map(|(i, c)| run_alone(i, *c, steps, label))
+        .collect()
+}
+
+/// Each step's outputs of `got` equal those of `want` bit for bit.
+fn assert_same_bits(got: &[Vec<f64>], want: &[Vec<f64>], what: &str) {
+    for (k, (a, b)) in got.iter().zip(want).enumerate() {
+        assert_eq!(bits(a), bits(b), "{what} step {k}");
+    }
+}
+
 #[test]
 fn eight_instances_interleaved_in_one_thread_match_each_alone() {
     let steps = 150;
     let configs = configurations();
-    let alone: Vec<_> = configs
-        .iter()
-        .enumerate()
-        .map(|(i, c)| run_alone(i, *c, steps, "alone"))
-        .collect();
+    let alone = run_each_alone(&configs, steps, "alone");
     let fmus: Vec<Instance> = configs
         .iter()
         .enumerate()
@@ -1602,9 +1569,11 @@ fn eight_instances_interleaved_in_one_thread_match_each_alone() {
     }
     for i in 0..fmus.len() {
         assert_eq!(together[i].len(), steps);
-        for (k, (a, b)) in together[i].iter().zip(&alone[i]).enumerate() {
-            assert_eq!(bits(a), bits(b), "instance {i} ({:?}) step {k}", configs[i]);
-        }
+        assert_same_bits(
+            &together[i],
+            &alone[i],
+            &format!("instance {i} ({:?})", configs[i]),
+        );
     }
     assert_ne!(alone[0], alone[1], "the configurations differ");
 }
@@ -1613,11 +1582,7 @@ fn eight_instances_interleaved_in_one_thread_match_each_alone() {
 fn eight_instances_in_parallel_threads_match_each_alone() {
     let steps = 150;
     let configs = configurations();
-    let alone: Vec<_> = configs
-        .iter()
-        .enumerate()
-        .map(|(i, c)| run_alone(i, *c, steps, "aloneT"))
-        .collect();
+    let alone = run_each_alone(&configs, steps, "aloneT");
     let threads: Vec<_> = configs
         .iter()
         .enumerate()
@@ -1627,10 +1592,11 @@ fn eight_instances_in_parallel_threads_match_each_alone() {
         })
         .collect();
     for (i, t) in threads.into_iter().enumerate() {
-        let outputs = t.join().expect("thread");
-        for (k, (a, b)) in outputs.iter().zip(&alone[i]).enumerate() {
-            assert_eq!(bits(a), bits(b), "thread {i} step {k}");
-        }
+        assert_same_bits(
+            &t.join().expect("thread"),
+            &alone[i],
+            &format!("thread {i}"),
+        );
     }
     // One instance handed from thread to thread, one call at a time.
     let f = initialized(wrc(), "handedOver", &[]);

@@ -122,20 +122,9 @@ fn steps_do_not_allocate() {
 }
 
 fn fastsim_solve_does_not_allocate() {
-    let contact = EllipticContact {
-        a: 8e-3,
-        b: 4e-3,
-        normal_force: 82e3,
-        shear_modulus: 82e9,
-        nu: 0.28,
-        mu: 0.3,
-    };
+    let contact = common::FASTSIM_CONTACT;
     let creepages = [
-        Creepage {
-            xi: 0.0,
-            eta: -6.25e-4,
-            phi: 0.625,
-        },
+        common::FASTSIM_CREEPAGE,
         Creepage {
             xi: 1e-3,
             eta: 2e-3,

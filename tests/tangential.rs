@@ -19,6 +19,7 @@ use railcontact::wheelset::{
 
 use common::{benchmark_wheelset_with, read_csv};
 use railcontact::tangential::patch::TangentialModel;
+use std::collections::HashMap;
 
 const Q: f64 = 78_500.0;
 const MU: f64 = 0.3;
@@ -64,6 +65,16 @@ fn options() -> Vec<(NormalModel, TangentialModel, bool)> {
     v
 }
 
+/// Creepages (ξ, η, φ) [-, -, 1/m].
+fn creepage(xi: f64, eta: f64, phi: f64) -> Creepage {
+    Creepage { xi, eta, phi }
+}
+
+/// The creepages of a row of the half-space reference tables (`cksi`, `ceta`, `cphi_per_mm`).
+fn row_creepage(row: &HashMap<String, f64>) -> Creepage {
+    creepage(row["cksi"], row["ceta"], row["cphi_per_mm"] * 1e3)
+}
+
 fn solve(ws: &mut Wheelset, creepage: Creepage) -> WheelsetResult {
     let input = WheelsetInput {
         y: 0.0,
@@ -82,6 +93,18 @@ fn right_total(out: &WheelsetResult) -> PatchResult {
     let side = &out.right;
     assert_eq!(side.n_patches, 1, "one patch in the central case: {side:?}");
     side.patches[0]
+}
+
+/// ANALYN's wheelsets with its own FASTSIM pairing and with FaStrip, on the planar and the
+/// non-planar patch, those that `keep`: (tangential model, planar, wheelset).
+fn analyn_wheelsets(
+    keep: impl Fn(TangentialModel, bool) -> bool,
+) -> impl Iterator<Item = (TangentialModel, bool, Wheelset)> {
+    [TangentialModel::ModelDefault, TangentialModel::Fastrip]
+        .into_iter()
+        .flat_map(|t| [true, false].map(|planar| (t, planar)))
+        .filter(move |&(t, planar)| keep(t, planar))
+        .map(|(t, planar)| (t, planar, wheelset(NormalModel::Analyn, t, planar)))
 }
 
 /// The options the required accuracy is checked on (planar patch — the set-up of the half-space
@@ -103,11 +126,7 @@ fn creep_curves_against_the_exact_theory() {
         println!("{} + {} planar={planar}:", model.name(), t.name());
         println!("   ξ        η       φ 1/m  |  Fx/μN ref  ours   |  Fy/μN ref  ours   | Mz N·m ref ours");
         for r in &rows {
-            let creepage = Creepage {
-                xi: r["cksi"],
-                eta: r["ceta"],
-                phi: r["cphi_per_mm"] * 1e3,
-            };
+            let creepage = row_creepage(r);
             if creepage.xi.abs().max(creepage.eta.abs()) < 4e-4 {
                 continue;
             }
@@ -147,11 +166,7 @@ fn pure_spin_against_the_exact_theory() {
     for (model, t, planar) in options() {
         let mut ws = wheelset(model, t, planar);
         for r in &rows {
-            let creepage = Creepage {
-                xi: r["cksi"],
-                eta: r["ceta"],
-                phi: r["cphi_per_mm"] * 1e3,
-            };
+            let creepage = row_creepage(r);
             let p = right_total(&solve(&mut ws, creepage));
             let (fy_ref, mz_ref) = (r["fs_N"], r["mn_Nmm"] * 1e-3);
             println!(
@@ -200,14 +215,7 @@ fn pure_spin_slip_zone_outline() {
     let mean_x_ref = slip_ref.iter().map(|e| e.0).sum::<f64>() / slip_ref.len() as f64;
     let (model, t, planar) = BEST[0];
     let mut ws = wheelset(model, t, planar);
-    solve(
-        &mut ws,
-        Creepage {
-            xi: 0.0,
-            eta: 0.0,
-            phi: 0.052,
-        },
-    );
+    solve(&mut ws, creepage(0.0, 0.0, 0.052));
     let field = ws
         .traction_field(true, 0)
         .expect("a strip patch with a traction field");
@@ -240,27 +248,10 @@ fn mirrored_creepages_and_wheels_mirror_the_forces() {
     // both wheels, right(ξ, η, φ) = left(ξ, −η, −φ) with Fy and Mz negated; ξ → −ξ alone negates
     // Fx. Tolerance: the sides are solved independently on mirrored profile samples (round-off of
     // the mirrored set-up), 1e−6 of μN.
-    for (t, planar) in [
-        (TangentialModel::ModelDefault, true),
-        (TangentialModel::ModelDefault, false),
-        (TangentialModel::Fastrip, true),
-        (TangentialModel::Fastrip, false),
-    ] {
-        let mut ws = wheelset(NormalModel::Analyn, t, planar);
-        let k = Creepage {
-            xi: 1e-3,
-            eta: 5e-4,
-            phi: 0.05,
-        };
+    for (_, planar, mut ws) in analyn_wheelsets(|_, _| true) {
+        let k = creepage(1e-3, 5e-4, 0.05);
         let a = solve(&mut ws, k);
-        let b = solve(
-            &mut ws,
-            Creepage {
-                eta: -k.eta,
-                phi: -k.phi,
-                ..k
-            },
-        );
+        let b = solve(&mut ws, creepage(k.xi, -k.eta, -k.phi));
         let (r, l) = (right_total(&a), b.left.patches[0]);
         let tol = 1e-6 * MU * Q;
         println!(
@@ -272,20 +263,9 @@ fn mirrored_creepages_and_wheels_mirror_the_forces() {
         assert!((r.fy + l.fy).abs() < tol, "Fy {} vs {}", r.fy, l.fy);
         assert!((r.mz + l.mz).abs() < tol * 1e-2, "Mz {} vs {}", r.mz, l.mz);
         if planar {
-            let only_xi = Creepage {
-                xi: 2e-3,
-                eta: 0.0,
-                phi: 0.0,
-            };
+            let only_xi = creepage(2e-3, 0.0, 0.0);
             let f = right_total(&solve(&mut ws, only_xi)).fx;
-            let g = right_total(&solve(
-                &mut ws,
-                Creepage {
-                    xi: -only_xi.xi,
-                    ..only_xi
-                },
-            ))
-            .fx;
+            let g = right_total(&solve(&mut ws, creepage(-only_xi.xi, 0.0, 0.0))).fx;
             assert!((f + g).abs() < tol, "{f} vs {g}");
         }
     }
@@ -298,20 +278,10 @@ fn full_sliding_reaches_mu_n() {
     // element midpoints (+0.34 % at the default 20 elements per strip, +0.12 % at 40, measured);
     // non-planar, the strips' forces also turn by their angle to the patch (cos of ≲ 2°:
     // −0.06 %). Tolerance 2e−3, FaStrip 5e−3.
-    for (t, planar) in [
-        (TangentialModel::ModelDefault, true),
-        (TangentialModel::ModelDefault, false),
-        (TangentialModel::Fastrip, true),
-    ] {
-        let mut ws = wheelset(NormalModel::Analyn, t, planar);
-        let p = right_total(&solve(
-            &mut ws,
-            Creepage {
-                xi: 0.3,
-                eta: 0.4,
-                phi: 0.0,
-            },
-        ));
+    // (FaStrip on the non-planar patch left out.)
+    for (t, planar, mut ws) in analyn_wheelsets(|t, planar| planar || t != TangentialModel::Fastrip)
+    {
+        let p = right_total(&solve(&mut ws, creepage(0.3, 0.4, 0.0)));
         let ratio = p.fx.hypot(p.fy) / (MU * p.fn_);
         let tol = if t == TangentialModel::Fastrip {
             5e-3

@@ -7,6 +7,7 @@ use crate::report::plot::{
 };
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use railcontact::wheelset::conicity::Conicity;
 use railcontact_cli::conicity::ConicityRun;
 
 /// Millimetres per metre.
@@ -15,6 +16,23 @@ const TO_MM: f64 = 1000.0;
 const MAIN: RGBColor = RGBColor(0, 114, 178);
 const KLINGEL: RGBColor = RGBColor(213, 94, 0);
 const GUIDE: RGBColor = RGBColor(140, 140, 140);
+
+/// Points of a curve.
+type Points = Vec<(f64, f64)>;
+
+/// λ(A) of `rows` as (A [mm], λ) points: by harmonic linearisation, and by Klingel integration
+/// where it exists.
+fn conicity_points(rows: &[Conicity]) -> (Points, Points) {
+    let harmonic = rows
+        .iter()
+        .map(|c| (c.amplitude * TO_MM, c.harmonic))
+        .collect();
+    let klingel = rows
+        .iter()
+        .filter_map(|c| c.klingel.map(|k| (c.amplitude * TO_MM, k)))
+        .collect();
+    (harmonic, klingel)
+}
 
 /// Δr(y) and λ(A) of one run; `setup` describes the profiles and track for the title.
 pub struct ConicityFigure<'a> {
@@ -81,30 +99,8 @@ impl Figure for ConicityFigure<'_> {
         }
         curve(&mut chart, &points, harmonic)?;
 
-        let fine_h: Vec<(f64, f64)> = self
-            .run
-            .curve
-            .iter()
-            .map(|c| (c.amplitude * TO_MM, c.harmonic))
-            .collect();
-        let fine_k: Vec<(f64, f64)> = self
-            .run
-            .curve
-            .iter()
-            .filter_map(|c| c.klingel.map(|k| (c.amplitude * TO_MM, k)))
-            .collect();
-        let listed_h: Vec<(f64, f64)> = self
-            .run
-            .table
-            .iter()
-            .map(|c| (c.amplitude * TO_MM, c.harmonic))
-            .collect();
-        let listed_k: Vec<(f64, f64)> = self
-            .run
-            .table
-            .iter()
-            .filter_map(|c| c.klingel.map(|k| (c.amplitude * TO_MM, k)))
-            .collect();
+        let (fine_h, fine_k) = conicity_points(&self.run.curve);
+        let (listed_h, listed_k) = conicity_points(&self.run.table);
         let a_max = listed_h
             .iter()
             .chain(&fine_h)

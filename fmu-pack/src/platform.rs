@@ -18,33 +18,22 @@ pub struct Platform {
     prefix: &'static str,
 }
 
-const LINUX64: Platform = Platform {
-    folder: "linux64",
-    suffix: ".so",
-    prefix: "lib",
-};
-const LINUX32: Platform = Platform {
-    folder: "linux32",
-    suffix: ".so",
-    prefix: "lib",
-};
-const WIN64: Platform = Platform {
-    folder: "win64",
-    suffix: ".dll",
-    prefix: "",
-};
-const WIN32: Platform = Platform {
-    folder: "win32",
-    suffix: ".dll",
-    prefix: "",
-};
-const DARWIN64: Platform = Platform {
-    folder: "darwin64",
-    suffix: ".dylib",
-    prefix: "lib",
-};
+const LINUX64: Platform = Platform::new("linux64", ".so", "lib");
+const LINUX32: Platform = Platform::new("linux32", ".so", "lib");
+const WIN64: Platform = Platform::new("win64", ".dll", "");
+const WIN32: Platform = Platform::new("win32", ".dll", "");
+const DARWIN64: Platform = Platform::new("darwin64", ".dylib", "lib");
 
 impl Platform {
+    /// The platform of `folder` whose libraries are named `<prefix><name><suffix>`.
+    const fn new(folder: &'static str, suffix: &'static str, prefix: &'static str) -> Platform {
+        Platform {
+            folder,
+            suffix,
+            prefix,
+        }
+    }
+
     /// The platform of a target triple such as `x86_64-unknown-linux-gnu`,
     /// `x86_64-pc-windows-msvc` or `aarch64-apple-darwin`.
     pub fn of_target(triple: &str) -> Result<Platform, String> {

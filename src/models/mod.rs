@@ -28,34 +28,25 @@ pub(crate) fn fastsim_settings(
     ny: i32,
     scheme: i32,
 ) -> Result<FastsimSettings, ModelError> {
-    let scheme = match scheme {
-        1 => MarchScheme::Midpoint,
-        2 => MarchScheme::Contact,
-        k => {
-            return Err(ModelError::Error(format!(
-                "fastsimScheme = {k} is not 1 or 2"
-            )))
-        }
-    };
-    let bound = match traction_bound {
-        1 => TractionBound::Elliptic,
-        2 => TractionBound::Parabolic,
-        k => {
-            return Err(ModelError::Error(format!(
-                "tractionBound = {k} is not 1 or 2"
-            )))
-        }
-    };
-    let flexibility = match flexibility {
-        1 => Flexibility::Three,
-        2 => Flexibility::Single,
-        3 => Flexibility::Blended,
-        k => {
-            return Err(ModelError::Error(format!(
-                "flexibility = {k} is not 1, 2 or 3"
-            )))
-        }
-    };
+    let scheme = option_of(
+        "fastsimScheme",
+        scheme,
+        &[MarchScheme::Midpoint, MarchScheme::Contact],
+    )?;
+    let bound = option_of(
+        "tractionBound",
+        traction_bound,
+        &[TractionBound::Elliptic, TractionBound::Parabolic],
+    )?;
+    let flexibility = option_of(
+        "flexibility",
+        flexibility,
+        &[
+            Flexibility::Three,
+            Flexibility::Single,
+            Flexibility::Blended,
+        ],
+    )?;
     let count = |name: &str, k: i32| {
         usize::try_from(k)
             .ok()
@@ -71,6 +62,23 @@ pub(crate) fn fastsim_settings(
     })
 }
 
+/// The option that the integer parameter `name` selects by its 1-based `code` among `options`;
+/// any other code is an error listing the valid ones.
+fn option_of<T: Copy>(name: &str, code: i32, options: &[T]) -> Result<T, ModelError> {
+    let chosen = usize::try_from(code)
+        .ok()
+        .and_then(|k| k.checked_sub(1))
+        .and_then(|i| options.get(i));
+    chosen.copied().ok_or_else(|| {
+        let codes: Vec<String> = (1..=options.len()).map(|k| k.to_string()).collect();
+        let (last, others) = codes.split_last().expect("at least one option");
+        ModelError::Error(format!(
+            "{name} = {code} is not {} or {last}",
+            others.join(", ")
+        ))
+    })
+}
+
 /// Writes an output value; a non-finite one is an internal error (outputs are never NaN).
 pub(crate) fn set_output(values: &mut Values, v: RealVar, x: f64) -> Result<(), ModelError> {
     if !x.is_finite() {
@@ -81,4 +89,56 @@ pub(crate) fn set_output(values: &mut Values, v: RealVar, x: f64) -> Result<(), 
     }
     values.set_real(v, x);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn error_of(r: Result<FastsimSettings, ModelError>) -> String {
+        match r {
+            Err(ModelError::Error(message)) => message,
+            other => panic!("expected an error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn fastsim_options_are_one_based_and_a_bad_code_names_the_valid_ones() {
+        let s = fastsim_settings(2, 3, 10, 11, 2).unwrap();
+        assert_eq!(
+            (s.bound, s.flexibility, s.scheme, s.nx, s.ny),
+            (
+                TractionBound::Parabolic,
+                Flexibility::Blended,
+                MarchScheme::Contact,
+                10,
+                11
+            )
+        );
+        let s = fastsim_settings(1, 1, 1, 1, 1).unwrap();
+        assert_eq!(
+            (s.bound, s.flexibility, s.scheme),
+            (
+                TractionBound::Elliptic,
+                Flexibility::Three,
+                MarchScheme::Midpoint
+            )
+        );
+        assert_eq!(
+            error_of(fastsim_settings(1, 1, 10, 10, 3)),
+            "fastsimScheme = 3 is not 1 or 2"
+        );
+        assert_eq!(
+            error_of(fastsim_settings(0, 1, 10, 10, 1)),
+            "tractionBound = 0 is not 1 or 2"
+        );
+        assert_eq!(
+            error_of(fastsim_settings(1, -1, 10, 10, 1)),
+            "flexibility = -1 is not 1, 2 or 3"
+        );
+        assert_eq!(
+            error_of(fastsim_settings(1, 1, 0, 10, 1)),
+            "nx = 0 must be >= 1"
+        );
+    }
 }

@@ -338,19 +338,11 @@ pub fn profiles(
     resources: Option<&Path>,
 ) -> Result<(Profile, Profile), ModelError> {
     let smoothing = values.real(var::profileSmoothing);
-    let wheel = load_profile(
-        values.string(var::wheelProfile),
-        ProfileKind::Wheel,
-        smoothing,
-        resources,
-    )?;
-    let rail = load_profile(
-        values.string(var::railProfile),
-        ProfileKind::Rail,
-        smoothing,
-        resources,
-    )?;
-    Ok((wheel, rail))
+    let load = |name, kind| load_profile(values.string(name), kind, smoothing, resources);
+    Ok((
+        load(var::wheelProfile, ProfileKind::Wheel)?,
+        load(var::railProfile, ProfileKind::Rail)?,
+    ))
 }
 
 /// The wheelset settings the parameters describe.
@@ -389,26 +381,37 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
         )?,
         scan_step: values.real(var::scanStep),
         b_min: values.real(var::bMin),
-        normal_model: NormalModel::from_code(values.integer(var::normalModel)).ok_or_else(
-            || {
-                ModelError::Error(format!(
-                    "normalModel = {} is outside the allowed range [1, 6]",
-                    values.integer(var::normalModel)
-                ))
-            },
+        normal_model: model_code(
+            "normalModel",
+            values.integer(var::normalModel),
+            6,
+            NormalModel::from_code,
         )?,
         strips: usize::try_from(values.integer(var::nStrips)).unwrap_or(0),
         b_smoothing: values.real(var::bSmoothing),
         kp_shape_correction: values.boolean(var::kpShapeCorrection),
-        tangential: TangentialModel::from_code(values.integer(var::tangentialModel)).ok_or_else(
-            || {
-                ModelError::Error(format!(
-                    "tangentialModel = {} is outside the allowed range [1, 4]",
-                    values.integer(var::tangentialModel)
-                ))
-            },
+        tangential: model_code(
+            "tangentialModel",
+            values.integer(var::tangentialModel),
+            4,
+            TangentialModel::from_code,
         )?,
         planar_patch: values.boolean(var::planarPatch),
+    })
+}
+
+/// The model that the integer parameter `name` selects by `code` (`from_code`, valid 1 to
+/// `max`); any other code is an error.
+fn model_code<T>(
+    name: &str,
+    code: i32,
+    max: i32,
+    from_code: impl Fn(i32) -> Option<T>,
+) -> Result<T, ModelError> {
+    from_code(code).ok_or_else(|| {
+        ModelError::Error(format!(
+            "{name} = {code} is outside the allowed range [1, {max}]"
+        ))
     })
 }
 

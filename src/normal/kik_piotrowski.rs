@@ -683,6 +683,20 @@ mod tests {
         StripGeometry::quadratic(curv_a, curv_b, -1.27 * b_v, 1.21 * b_v, n)
     }
 
+    /// Two contact regions on `n` strips over [−8, 20] mm: the Hertz gap of curvature
+    /// [`CURV_B`] around y0 and a second well (curvature 4.5 1/m, 20 µm deeper gap) at 12 mm.
+    fn two_wells(n: usize) -> StripGeometry {
+        StripGeometry::from_fn(-8e-3, 20e-3, n, |s| {
+            let first = CURV_B * s * s;
+            let second = 20e-6 + 4.5 * (s - 12e-3).powi(2);
+            if first <= second {
+                (first, 0.5, CURV_B)
+            } else {
+                (second, 0.5, 4.5)
+            }
+        })
+    }
+
     /// KP5's p0 at y0 from the strip containing y0: p0 = p0_j x_l(y0)/x_l,j (KP3) with
     /// x_l(y0) = √(εδ/A) (f(y0) = 0, constant A).
     fn peak_at_origin(geom: &StripGeometry, sol: &StripSolution, eps: f64, delta: f64) -> f64 {
@@ -1052,15 +1066,7 @@ mod tests {
             (CURV_B * s * s, 0.6, -2.0)
         }));
         // Two contact regions.
-        geometries.push(StripGeometry::from_fn(-8e-3, 20e-3, 120, |s| {
-            let first = CURV_B * s * s;
-            let second = 20e-6 + 4.5 * (s - 12e-3).powi(2);
-            if first <= second {
-                (first, 0.5, CURV_B)
-            } else {
-                (second, 0.5, 4.5)
-            }
-        }));
+        geometries.push(two_wells(120));
         // A single strip; y0 outside the strip set; unusable strips.
         geometries.push(StripGeometry::quadratic(0.5, CURV_B, -1e-3, 1e-3, 1));
         geometries.push(StripGeometry::quadratic(0.5, CURV_B, -1e-3, 2e-3, 2));
@@ -1103,16 +1109,7 @@ mod tests {
         // gap, 1.0089 on the two-well gap while the second well's strips enter). While a single strip is in contact N rises from 0 like 1/ln(Δs/x_l) (a strip
         // wider than it is long acts as a line load at y0): continuous but steep (measured: the
         // step after entry is × 1.10), a known limit of the strip discretisation.
-        let two_wells = StripGeometry::from_fn(-8e-3, 20e-3, 60, |s| {
-            let first = CURV_B * s * s;
-            let second = 20e-6 + 4.5 * (s - 12e-3).powi(2);
-            if first <= second {
-                (first, 0.5, CURV_B)
-            } else {
-                (second, 0.5, 4.5)
-            }
-        });
-        for geom in [hertz_gap(0.5, CURV_B, DELTA, 60), two_wells] {
+        for geom in [hertz_gap(0.5, CURV_B, DELTA, 60), two_wells(60)] {
             let mut delta = 1e-8;
             let (_, mut last) = run(&geom, delta);
             let mut last_strips = 0;

@@ -125,6 +125,14 @@ fn valid_curvature(curv: f64) -> bool {
     curv.is_finite() && curv > 0.0
 }
 
+/// The strips' lateral curvatures B_i into `out`, a non-finite one replaced by the floor `b_min`
+/// [1/m].
+fn finite_curv_b(curv_b: &[f64], b_min: f64, out: &mut [f64]) {
+    for (b, &raw) in out.iter_mut().zip(curv_b) {
+        *b = if raw.is_finite() { raw } else { b_min };
+    }
+}
+
 /// Half window m (in strips) of the S0 filter: the window |j − i| ≤ m spans the fraction
 /// `fraction` of the `n` strips (m = ⌊fraction·n/2⌋; 0 = no smoothing).
 fn smoothing_half_window(fraction: f64, n: usize) -> usize {
@@ -335,11 +343,9 @@ impl StripModel for StripesB {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
         let n = geom.len();
         let b_min = params.b_floor();
+        finite_curv_b(&geom.curv_b[..n], b_min, &mut self.curv_b_raw[..n]);
         let st = &mut self.strips;
         st.n = n;
-        for (raw, &b) in self.curv_b_raw[..n].iter_mut().zip(&geom.curv_b[..n]) {
-            *raw = if b.is_finite() { b } else { b_min };
-        }
         // S0: smoothing, then the replacement floor.
         let half_window = smoothing_half_window(params.b_smoothing, n);
         smooth_least_squares_parabola(&self.curv_b_raw[..n], half_window, &mut st.curv_b[..n]);
@@ -413,9 +419,7 @@ impl StripModel for StripesAB {
         let b_min = params.b_floor();
         let st = &mut self.strips;
         st.n = n;
-        for (b, &raw) in st.curv_b[..n].iter_mut().zip(&geom.curv_b[..n]) {
-            *b = if raw.is_finite() { raw } else { b_min };
-        }
+        finite_curv_b(&geom.curv_b[..n], b_min, &mut st.curv_b[..n]);
         // Shift rule: one constant for the whole patch.
         let b_lowest = st.curv_b[..n].iter().copied().fold(f64::INFINITY, f64::min);
         self.curv_b_shift = if b_lowest < b_min {

@@ -595,27 +595,14 @@ fn solve_pentadiagonal_spd(d0: &[f64], d1: &[f64], d2: &[f64], r: &[f64]) -> Opt
 }
 
 #[cfg(test)]
+#[path = "../../tests/common/lcg.rs"]
+mod lcg;
+
+#[cfg(test)]
 mod tests {
     use super::*;
 
-    /// Deterministic uniform numbers in [0, 1) (64-bit LCG, Knuth's MMIX constants), so the noise
-    /// test needs no extra crate and never changes.
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-        /// Standard normal by Box–Muller.
-        fn normal(&mut self) -> f64 {
-            let u1 = self.next().max(1e-300);
-            let u2 = self.next();
-            (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
-        }
-    }
+    use super::lcg::Lcg;
 
     #[test]
     fn interval_index_agrees_with_binary_search_on_uneven_and_clustered_knots() {
@@ -627,13 +614,13 @@ mod tests {
             let step = if (80..110).contains(&i) {
                 1e-9
             } else {
-                1e-4 * (0.2 + 3.0 * rng.next())
+                1e-4 * (0.2 + 3.0 * rng.uniform())
             };
             y.push(y[i - 1] + step);
         }
         let index = IntervalIndex::new(&y);
         let (y0, yn) = (y[0], y[y.len() - 1]);
-        let mut queries: Vec<f64> = (0..5000).map(|_| y0 + (yn - y0) * rng.next()).collect();
+        let mut queries: Vec<f64> = (0..5000).map(|_| y0 + (yn - y0) * rng.uniform()).collect();
         for &k in &y[1..y.len() - 1] {
             queries.extend([k, k * (1.0 + 1e-15), k * (1.0 - 1e-15)]);
         }

@@ -8,6 +8,7 @@ use railcontact::geometry::profile::{Profile, ProfileKind};
 use railcontact::geometry::track::TrackSetup;
 use railcontact::material::Material;
 use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::{Creepage, EllipticContact};
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetSettings};
 
 /// The vendored test data: `tests/data` of the repository root (profiles and reference
@@ -69,6 +70,27 @@ pub const STEEL: Material = Material {
     youngs_modulus: 210e9,
     poisson_ratio: 0.28,
     friction: 0.3,
+};
+
+/// The benches' single FASTSIM patch: a = 8 mm, b = 4 mm, N = 82 kN, steel (G = 82 GPa,
+/// ν = 0.28), μ = 0.3.
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub const FASTSIM_CONTACT: EllipticContact = EllipticContact {
+    a: 8e-3,
+    b: 4e-3,
+    normal_force: 82e3,
+    shear_modulus: 82e9,
+    nu: 0.28,
+    mu: 0.3,
+};
+
+/// The benches' FASTSIM creepage on [`FASTSIM_CONTACT`]: pure lateral creepage with spin
+/// (η = −6.25e-4, φ = 0.625 1/m).
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub const FASTSIM_CREEPAGE: Creepage = Creepage {
+    xi: 0.0,
+    eta: -6.25e-4,
+    phi: 0.625,
 };
 
 /// The built-in S1002 wheel on the built-in UIC60 rail on the default track (1:40, gauge

@@ -202,6 +202,15 @@ def data_file(relative: str) -> Path:
 BUNDLED_PROFILES = ("profiles/MBench_S1002_v3.prw", "profiles/MBench_UIC60_v3.prr")
 
 
+def bundled_profile_values(by_path: bool = False) -> dict[str, str]:
+    """Start values of ``wheelProfile`` and ``railProfile`` naming ``BUNDLED_PROFILES``: by bare file
+    name (the copies bundled in an FMU's resources) or, with ``by_path``, by their path in tests/data."""
+    return {
+        name: str(data_file(relative)) if by_path else Path(relative).name
+        for name, relative in zip(("wheelProfile", "railProfile"), BUNDLED_PROFILES)
+    }
+
+
 @dataclass(frozen=True)
 class PackerRun:
     out_dir: Path
@@ -357,18 +366,18 @@ class Slave:
     # -- values
     def set(self, **values: float | int | str | bool) -> None:
         """Sets variables one call each, so a rejected value is attributed to its variable."""
+        setters = {
+            "Integer": (self.fmu.setInteger, int),
+            "Real": (self.fmu.setReal, float),
+            "String": (self.fmu.setString, str),
+            "Boolean": (self.fmu.setBoolean, bool),
+        }
         for name, value in values.items():
             v = self.vars[name]
-            if v.type == "Integer":
-                self.fmu.setInteger([v.valueReference], [int(value)])
-            elif v.type == "Real":
-                self.fmu.setReal([v.valueReference], [float(value)])
-            elif v.type == "String":
-                self.fmu.setString([v.valueReference], [str(value)])
-            elif v.type == "Boolean":
-                self.fmu.setBoolean([v.valueReference], [bool(value)])
-            else:  # pragma: no cover
+            if v.type not in setters:  # pragma: no cover
                 raise TypeError(f"{name}: {v.type}")
+            setter, cast = setters[v.type]
+            setter([v.valueReference], [cast(value)])
 
     def get(self, name: str) -> float | int | str | bool:
         v = self.vars[name]
@@ -456,3 +465,10 @@ def slave_factory(model_description: ModelDescription, unzipdir: Path):
     yield factory
     for slave in reversed(created):
         slave.free()
+
+
+@pytest.fixture
+def new_wrc(wrc_model_description: ModelDescription, wrc_unzipdir: Path):
+    """Factory of WheelRailContact slaves: `new_wrc(params=..., inputs=..., initialize=True,
+    name=None)`; frees them at teardown."""
+    yield from slave_factory(wrc_model_description, wrc_unzipdir)

@@ -21,15 +21,14 @@ from fmpy import simulate_fmu
 from fmpy.model_description import ModelDescription, read_model_description
 
 from conftest import (
-    BUNDLED_PROFILES,
     FMU_FILE_NAMES,
     WRC_FMU_FILE_NAME,
     PackerRun,
     Slave,
     bits,
+    bundled_profile_values,
     packed_fmu,
     run_ecos,
-    data_file,
 )
 
 # The input each model's sweep drives (the same sweeps as fmu-pack's default experiments).
@@ -116,7 +115,6 @@ def test_input_sweep_in_ecos_matches_fmpy_bit_for_bit(file_name: str, tmp_path: 
 
 
 def test_a_bundled_profile_loads_by_its_bare_name_in_ecos(bundled_fmu_dir: PackerRun, tmp_path: Path) -> None:
-    wheel, rail = (Path(r).name for r in BUNDLED_PROFILES)
     read = {"Real": ["right.Fy", "right.Fz", "right.p1.Fn", "right.p1.contactAngle"], "Integer": ["right.nPatches"]}
     steps = [{"y": 0.001 * k} for k in range(1, 7)]
     common = {"railInclination": 0.0, "normalModel": 6}
@@ -125,7 +123,7 @@ def test_a_bundled_profile_loads_by_its_bare_name_in_ecos(bundled_fmu_dir: Packe
             "fmu": str(bundled_fmu_dir.out_dir / WRC_FMU_FILE_NAME),
             "instance": "wrc",
             "step_size": 0.001,
-            "start": {**common, "wheelProfile": wheel, "railProfile": rail},
+            "start": {**common, **bundled_profile_values()},
             "steps": steps,
             "read": read,
             # Ecos reports an FMU's errors only in its debug log (test_host_behaviour.py).
@@ -139,11 +137,7 @@ def test_a_bundled_profile_loads_by_its_bare_name_in_ecos(bundled_fmu_dir: Packe
             "fmu": str(packed_fmu(WRC_FMU_FILE_NAME)),
             "instance": "wrc",
             "step_size": 0.001,
-            "start": {
-                **common,
-                "wheelProfile": str(data_file(BUNDLED_PROFILES[0])),
-                "railProfile": str(data_file(BUNDLED_PROFILES[1])),
-            },
+            "start": {**common, **bundled_profile_values(by_path=True)},
             "steps": steps,
             "read": read,
         },

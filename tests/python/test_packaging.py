@@ -23,15 +23,15 @@ import pytest
 from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import fmi2Error
-from fmpy.model_description import ModelDescription, read_model_description
+from fmpy.model_description import read_model_description
 
 from conftest import (
     BUNDLED_PROFILES,
     FMU_FILE_NAMES,
     WRC_FMU_FILE_NAME,
     PackerRun,
-    Slave,
     bits,
+    bundled_profile_values,
     packed_fmu,
     require_tool,
     data_file,
@@ -117,13 +117,12 @@ def _simulate(fmu: Path, start_values: dict) -> np.ndarray:
 
 def test_a_bare_profile_name_loads_the_bundled_file_in_fmpy(bundled_fmu_dir: PackerRun) -> None:
     common = {"railInclination": 0.0, "normalModel": 6}
-    wheel, rail = (Path(r).name for r in BUNDLED_PROFILES)
     bundled = _simulate(
-        bundled_fmu_dir.out_dir / WRC_FMU_FILE_NAME, {**common, "wheelProfile": wheel, "railProfile": rail}
+        bundled_fmu_dir.out_dir / WRC_FMU_FILE_NAME, {**common, **bundled_profile_values()}
     )
     by_path = _simulate(
         packed_fmu(WRC_FMU_FILE_NAME),
-        {**common, **{k: str(data_file(r)) for k, r in zip(("wheelProfile", "railProfile"), BUNDLED_PROFILES)}},
+        {**common, **bundled_profile_values(by_path=True)},
     )
     builtin = _simulate(packed_fmu(WRC_FMU_FILE_NAME), common)
     assert len(bundled) == len(by_path) == 9
@@ -134,29 +133,21 @@ def test_a_bare_profile_name_loads_the_bundled_file_in_fmpy(bundled_fmu_dir: Pac
     assert not np.array_equal(bundled["right.p1.Fn"], builtin["right.p1.Fn"])
 
 
-def test_a_bare_name_that_is_not_bundled_lists_where_it_was_looked_for(
-    wrc_model_description: ModelDescription, wrc_unzipdir: Path
-) -> None:
-    slave = Slave(wrc_model_description, wrc_unzipdir)
-    try:
-        slave.fmu.setupExperiment(startTime=0.0)
-        slave.set(wheelProfile="MBench_S1002_v9.prw")
-        with pytest.raises(FMICallException) as excinfo:
-            slave.fmu.enterInitializationMode()
-            slave.fmu.exitInitializationMode()
-        assert excinfo.value.status == fmi2Error
-        text = " | ".join(m.text for m in slave.errors())
-        resources = wrc_unzipdir / "resources" / "MBench_S1002_v9.prw"
-        cwd = Path.cwd() / "MBench_S1002_v9.prw"
-        for expected in (
-            'wheelProfile = "MBench_S1002_v9.prw"',
-            'unknown built-in profile "MBench_S1002_v9.prw"',
-            f"looked in the FMU's resources folder ({resources})",
-            f"and the working directory ({cwd})",
-        ):
-            assert expected in text, (expected, text)
-    finally:
-        slave.free()
+def test_a_bare_name_that_is_not_bundled_lists_where_it_was_looked_for(new_wrc, wrc_unzipdir: Path) -> None:
+    slave = new_wrc(initialize=False)
+    with pytest.raises(FMICallException) as excinfo:
+        slave.initialize(params={"wheelProfile": "MBench_S1002_v9.prw"})
+    assert excinfo.value.status == fmi2Error
+    text = " | ".join(m.text for m in slave.errors())
+    resources = wrc_unzipdir / "resources" / "MBench_S1002_v9.prw"
+    cwd = Path.cwd() / "MBench_S1002_v9.prw"
+    for expected in (
+        'wheelProfile = "MBench_S1002_v9.prw"',
+        'unknown built-in profile "MBench_S1002_v9.prw"',
+        f"looked in the FMU's resources folder ({resources})",
+        f"and the working directory ({cwd})",
+    ):
+        assert expected in text, (expected, text)
 
 
 def test_bundled_fmus_validate(bundled_fmu_dir: PackerRun) -> None:

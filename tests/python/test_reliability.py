@@ -44,11 +44,6 @@ WALK_INPUTS = ("y", "yaw", "roll", "Qleft", "Qright", "vx", "vy", "yawRate", "om
 
 
 @pytest.fixture
-def new_wrc(wrc_model_description: ModelDescription, wrc_unzipdir: Path):
-    yield from slave_factory(wrc_model_description, wrc_unzipdir)
-
-
-@pytest.fixture
 def new_hc(model_description: ModelDescription, unzipdir: Path):
     yield from slave_factory(model_description, unzipdir)
 

@@ -40,7 +40,6 @@ from conftest import (
     assert_fmpy_validates,
     bits,
     data_file,
-    slave_factory,
 )
 
 
@@ -58,12 +57,6 @@ PATCHES = (1, 2, 3)
 
 # ---------------------------------------------------------------------------------------------
 # Fixtures and helpers
-
-
-@pytest.fixture
-def new_wrc(wrc_model_description: ModelDescription, wrc_unzipdir: Path):
-    """Factory: `new_wrc(params=..., inputs=..., initialize=True, name=None)`; frees at teardown."""
-    yield from slave_factory(wrc_model_description, wrc_unzipdir)
 
 
 def dominant_angle(out: Mapping[str, float], side: str = "right") -> float:
