@@ -848,14 +848,15 @@ pub fn solve_ellipse(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tangential::fastsim::CONTACT_EXAMPLE;
 
     // CONTACT `fastsim` example (docs/theory.md §4.6, fastsim.ref_out cases 4 and 7) in SI units.
-    const A: f64 = 8e-3;
-    const B: f64 = 4e-3;
-    const N: f64 = 82_000.0;
-    const G: f64 = 82e9;
-    const NU: f64 = 0.28;
-    const MU: f64 = 0.3;
+    const A: f64 = CONTACT_EXAMPLE.a;
+    const B: f64 = CONTACT_EXAMPLE.b;
+    const N: f64 = CONTACT_EXAMPLE.normal_force;
+    const G: f64 = CONTACT_EXAMPLE.shear_modulus;
+    const NU: f64 = CONTACT_EXAMPLE.nu;
+    const MU: f64 = CONTACT_EXAMPLE.mu;
     const MU_N: f64 = MU * N;
     /// η = −6.25e−4, φ = 6.25e−4 mm⁻¹ = 0.625 m⁻¹, ξ = 0.
     const ETA: f64 = -6.25e-4;

@@ -502,6 +502,7 @@ fn element_centre(i: usize, n: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tangential::fastsim::CONTACT_EXAMPLE;
     use crate::tangential::fastsim::{
         three_flexibilities, EllipticContact, Fastsim, FastsimSettings,
     };
@@ -509,12 +510,12 @@ mod tests {
     use std::f64::consts::PI;
 
     /// CONTACT's `fastsim` example ellipse (docs/theory.md §4.6) in SI units.
-    const A: f64 = 8e-3;
-    const B: f64 = 4e-3;
-    const N: f64 = 82e3;
-    const G: f64 = 82e9;
-    const NU: f64 = 0.28;
-    const MU: f64 = 0.3;
+    const A: f64 = CONTACT_EXAMPLE.a;
+    const B: f64 = CONTACT_EXAMPLE.b;
+    const N: f64 = CONTACT_EXAMPLE.normal_force;
+    const G: f64 = CONTACT_EXAMPLE.shear_modulus;
+    const NU: f64 = CONTACT_EXAMPLE.nu;
+    const MU: f64 = CONTACT_EXAMPLE.mu;
 
     /// The Hertz ellipse cut into `ny` strips with its own F1 flexibilities and planar creepages.
     fn hertz_strips(ny: usize, creepage: Creepage) -> Vec<TangentialStrip> {

@@ -1,5 +1,5 @@
 //! The wheel-height iteration for a prescribed wheel load, shared by the multi-Hertzian and the
-//! strip solutions of a wheel (physics.md §5.2).
+//! strip solutions of a wheel (docs/theory.md §5.2, §8.3).
 //!
 //! The vertical force F(dz) of the rail on a wheel lowered by dz is zero at the touching height
 //! and grows monotonically, but its slope jumps where patches or strips enter and it can jump
@@ -76,10 +76,10 @@ pub enum ForceLaw {
 /// the Illinois steps then work in that tight bracket.
 ///
 /// `slope`: the force's slope dF/du near the root from a previous balance of the same wheel
-/// ([`Balanced::slope`]), or `None`: the first trial's correction is then Newton's step with it,
-/// aimed at the root itself, which under a load changed by ~1e−6 (the creep iteration's second
-/// pass) lands within the tolerance, where the Hertzian law's step overshoots on purpose and
-/// needs a regula falsi step more.
+/// ([`Balanced::slope`]), if known (else `None`): the first trial's correction is then Newton's
+/// step with it, aimed at the root itself, which under a load changed by ~1e−6 (the creep
+/// iteration's second pass) lands within the tolerance, where the Hertzian law's step overshoots
+/// on purpose and needs a regula falsi step more.
 pub fn balance<E>(
     touch: f64,
     first_approach: f64,

@@ -884,6 +884,18 @@ fn normalised_centre(i: usize, n: usize) -> f64 {
     }
 }
 
+/// CONTACT's `fastsim` example ellipse (docs/theory.md §4.6) in SI units: a = 8 mm, b = 4 mm,
+/// N = 82 kN, G = 82 GPa, ν = 0.28, μ = 0.3 — the oracle case of the tangential solvers' tests.
+#[cfg(test)]
+pub(crate) const CONTACT_EXAMPLE: EllipticContact = EllipticContact {
+    a: 8e-3,
+    b: 4e-3,
+    normal_force: 82_000.0,
+    shear_modulus: 82e9,
+    nu: 0.28,
+    mu: 0.3,
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -984,14 +996,7 @@ mod tests {
 
     /// CONTACT `fastsim` example (docs/theory.md §4.6) in SI units.
     fn oracle_contact() -> EllipticContact {
-        EllipticContact {
-            a: 8e-3,
-            b: 4e-3,
-            normal_force: 82_000.0,
-            shear_modulus: 82e9,
-            nu: 0.28,
-            mu: 0.3,
-        }
+        CONTACT_EXAMPLE
     }
 
     /// The oracle patch with CONTACT's bound on `f`'s grid: μ times the centre-pressure ratio
