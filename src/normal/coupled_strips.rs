@@ -377,14 +377,14 @@ impl StripModel for CoupledStrips {
         &mut self,
         geom: &StripGeometry,
         params: &NormalParams,
-        _table: &HertzShapeTable,
+        _shapes: &HertzShapeTable,
         delta: f64,
         out: &mut StripSolution,
     ) -> f64 {
-        let Some(n) = out.begin(geom, delta, params.e_star) else {
-            return 0.0;
+        let n = match out.begin(geom, delta, params.e_star) {
+            Some(n) => n.min(self.n),
+            None => return 0.0,
         };
-        let n = n.min(self.n);
         // C1: the candidates.
         let mut m = 0;
         let mut rhs_max: f64 = 0.0;
@@ -572,8 +572,8 @@ mod tests {
             model.load[..m].fill(0.0);
             assert!(model.gauss_seidel(m));
             let largest = pivoted.iter().copied().fold(0.0, f64::max);
-            for r in 0..m {
-                assert!((model.load[r] - pivoted[r]).abs() <= 1e-9 * largest);
+            for (gs, pv) in model.load[..m].iter().zip(&pivoted) {
+                assert!((gs - pv).abs() <= 1e-9 * largest);
             }
             eprintln!("{m} candidates, {loaded} loaded, N = {force:.1} N");
             assert_eq!(model.fallbacks(), 0);
