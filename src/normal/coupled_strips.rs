@@ -87,6 +87,13 @@ const PGS_SWEEPS: usize = 20_000;
 /// coupling alone would give it a finite load at once.
 pub const PEAK_BOUND: f64 = 2.0;
 
+/// Shortest half-length with which a strip's load acts on a neighbouring (adjacent) strip's
+/// centre line, as a fraction of that strip's own half-length (C2): a load much shorter than
+/// the neighbour would otherwise stand, through the neighbour's single collocation point at
+/// x = 0, for its whole length, and a short strip entering next to a long one would unload it
+/// by more than it takes (N(δ) falling: measured on S1002/UIC60 flange contact).
+const SPREAD: f64 = 0.5;
+
 /// The complementarity state of a candidate strip (C3).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 enum Load {
@@ -123,6 +130,7 @@ pub struct CoupledStrips {
     residual: PerStrip<f64>,
     bound: PerStrip<f64>,
     state: PerStrip<Load>,
+    log_half: PerStrip<f64>,
     edge_integral: PerStrip<f64>,
     /// States of the last solve, per strip (the warm start).
     warm: PerStrip<Load>,
@@ -160,6 +168,7 @@ impl CoupledStrips {
             residual: PerStrip::default(),
             bound: PerStrip::default(),
             state: PerStrip::default(),
+            log_half: PerStrip::default(),
             edge_integral: PerStrip::default(),
             warm: PerStrip::default(),
             matrix: vec![0.0; MAX_STRIPS * MAX_STRIPS],
@@ -189,34 +198,49 @@ impl CoupledStrips {
         (0..m).map(|r| (self.state[r], self.load[r], self.bound[r], self.residual[r]))
     }
 
-    /// G of the `m` candidates (C2) into `matrix`.
+    /// G of the `m` candidates (C2) into `matrix`. Column c's strip acts with its own
+    /// half-length a_c (Ĵ at the column's strip edges, computed once), on an adjacent row strip
+    /// with max(a_c, [`SPREAD`] a_r).
     fn assemble(&mut self, m: usize) {
-        let t_max = self.kernel.t_max();
+        for r in 0..m {
+            self.log_half[r] = self.half[r].ln();
+        }
         for c in 0..m {
             let a = self.half[c];
-            let log_a = a.ln();
-            let far_edge = t_max * a;
-            let inv_a = 1.0 / a;
+            let log_a = self.log_half[c];
             let j = self.strip[c];
             let far = (self.strip[0].abs_diff(j)).max(self.strip[m - 1].abs_diff(j));
             for k in 0..=far {
-                let t = self.edge[k] * inv_a;
+                let t = self.edge[k] / a;
                 self.edge_integral[k] = self.kernel.at_log(t, self.log_edge[k] - log_a);
             }
             for r in 0..m {
                 let k = self.strip[r].abs_diff(j);
+                let spread = SPREAD * self.half[r];
                 let value = if k == 0 {
                     2.0 * self.edge_integral[0]
+                } else if k > 1 || spread <= a {
+                    self.strip_difference(k, a, |k| self.edge_integral[k])
                 } else {
-                    if self.edge[k - 1] >= far_edge {
-                        let (t_lo, t_hi) = (self.edge[k - 1] * inv_a, self.edge[k] * inv_a);
-                        ScaledStripIntegral::far_difference(t_lo, t_hi, self.log_ratio[k])
-                    } else {
-                        self.edge_integral[k] - self.edge_integral[k - 1]
-                    }
+                    let log_spread = SPREAD.ln() + self.log_half[r];
+                    self.strip_difference(k, spread, |k| {
+                        self.kernel
+                            .at_log(self.edge[k] / spread, self.log_edge[k] - log_spread)
+                    })
                 };
                 self.matrix[r * MAX_STRIPS + c] = value;
             }
+        }
+    }
+
+    /// Ĵ((k + ½)Δs/c) − Ĵ((k − ½)Δs/c) for k ≥ 1 with `edge_integral`(k) = Ĵ((k + ½)Δs/c):
+    /// the far-field series once the nearer edge is beyond the table.
+    fn strip_difference(&self, k: usize, c: f64, edge_integral: impl Fn(usize) -> f64) -> f64 {
+        if self.edge[k - 1] >= self.kernel.t_max() * c {
+            let (t_lo, t_hi) = (self.edge[k - 1] / c, self.edge[k] / c);
+            ScaledStripIntegral::far_difference(t_lo, t_hi, self.log_ratio[k])
+        } else {
+            edge_integral(k) - edge_integral(k - 1)
         }
     }
 
@@ -446,8 +470,9 @@ impl StripModel for CoupledStrips {
         for i in 0..n {
             if let Some((a, peak)) = self.analyn.strip_at(i, delta) {
                 let rhs = delta - geom.f[i];
-                // y_max from p0 ≤ PEAK_BOUND p_ANALYN (p0 = πE* y/a, p_ANALYN = E* peak).
-                let bound = PEAK_BOUND * peak * a / PI;
+                // y_max from p0 ≤ PEAK_BOUND p_ANALYN min(1, 2a/Δs) (p0 = πE* y/a,
+                // p_ANALYN = E* peak).
+                let bound = PEAK_BOUND * peak * a / PI * (2.0 * a / geom.ds).min(1.0);
                 if a > 0.0 && a.is_finite() && rhs.is_finite() && bound > 0.0 && bound.is_finite() {
                     self.strip[m] = i;
                     self.half[m] = a;
