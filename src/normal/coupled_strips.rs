@@ -17,12 +17,16 @@
 //!   loads y_j = 2F_j/(π²E*Δs), F_j = (π/2) p0_j a_j Δs (V1), with
 //!   G_ij = Ĵ((|i−j| + ½)Δs/a_j) − Ĵ((|i−j| − ½)Δs/a_j) (i ≠ j), G_jj = 2Ĵ(Δs/(2a_j)),
 //!   Ĵ(T) = ∫₀^T I(1, t) dt the scale-free integral of KP6's I(c, y) (Boussinesq:
-//!   u = (p0/(πE*a)) ∫∫ √(a² − x²)/√(x² + y²) = y_j G_ij, [`ScaledStripIntegral`]).
+//!   u = (p0/(πE*a)) ∫∫ √(a² − x²)/√(x² + y²) = y_j G_ij, [`ScaledStripIntegral`]); on an
+//!   adjacent strip (|i − j| = 1) a_j is replaced by max(a_j, ½ a_i) ([`SPREAD`]).
 //! * **C3** complementarity on the strips with a_i > 0, loads bounded by ANALYN's peak:
 //!   0 ≤ y_i ≤ y_max,i with p0 ≤ κ p_ANALYN,i ([`PEAK_BOUND`] κ = 2), and u_i = δ − f_i where
 //!   0 < y_i < y_max,i, u_i ≥ δ − f_i where y_i = 0 (the gap f_i + u_i − δ closes where there is
 //!   load), u_i ≤ δ − f_i where y_i = y_max,i.
 //! * **C4** p0_i = πE* y_i/a_i, N = Σ F_i.
+//! * **C5** a strip whose peak is below [`LIGHT_LOAD`] (¼) of ANALYN's is reported with its
+//!   length shortened by p0_i/(¼ p_ANALYN,i) and its peak raised by the inverse (force kept),
+//!   so that the strip's area vanishes with its load.
 //!
 //! Scaled by strip force, far strips couple symmetrically (G_ij → (π/2) ln((k + ½)/(k − ½)),
 //! k = |i − j|, the point-load field F/(πE*d)) and the diagonal grows like π ln(Δs/a_j) as
@@ -51,7 +55,12 @@
 //! # Known limits
 //!
 //! * The coupling uses the strips' centre lines x = 0: the small offsets x_c,i between strips
-//!   under yaw are neglected in G (the pressure itself is placed at x_c,i).
+//!   under yaw are neglected in G (the pressure itself is placed at x_c,i). Collocating at one
+//!   point of a long strip overstates a short neighbour's effect on it; the SPREAD floor limits
+//!   that for adjacent strips only (it leaves the Hertz convergence intact), so a short strip
+//!   two or more strips away from a much longer one still acts at its own length.
+//! * κ = 2 (C3), ½ (C2) and ¼ (C5) are our choices, set for continuity and a monotone N(δ) on
+//!   wheel–rail geometry (measured where they were needed), not fitted to reference data.
 //! * The patch's outline is ANALYN's (A1): where the coupled pressure would extend beyond it
 //!   the strips at the outline hold their peak at the bound κ p_ANALYN and the rest of the load
 //!   moves inwards; the area and the equivalent ellipse are ANALYN's. κ = 2 is our choice (a
@@ -94,6 +103,14 @@ pub const PEAK_BOUND: f64 = 2.0;
 /// by more than it takes (N(δ) falling: measured on S1002/UIC60 flange contact).
 const SPREAD: f64 = 0.5;
 
+/// Peak pressure, as a fraction of ANALYN's on the same strip, below which a strip's reported
+/// length shrinks in proportion to its peak (C5), keeping its force: a strip whose load the
+/// coupling has driven to nearly nothing then also has nearly no length, so the area and the
+/// equivalent ellipse of the tangential problem do not jump when the strip's load starts from
+/// or returns to zero at a finite ANALYN length (measured: FaStrip's creep force's vertical
+/// component jumped by 200 N of 6 kN in S1002/UIC60 flange contact).
+const LIGHT_LOAD: f64 = 0.25;
+
 /// The complementarity state of a candidate strip (C3).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 enum Load {
@@ -129,6 +146,7 @@ pub struct CoupledStrips {
     load: PerStrip<f64>,
     residual: PerStrip<f64>,
     bound: PerStrip<f64>,
+    peak: PerStrip<f64>,
     state: PerStrip<Load>,
     log_half: PerStrip<f64>,
     edge_integral: PerStrip<f64>,
@@ -167,6 +185,7 @@ impl CoupledStrips {
             load: PerStrip::default(),
             residual: PerStrip::default(),
             bound: PerStrip::default(),
+            peak: PerStrip::default(),
             state: PerStrip::default(),
             log_half: PerStrip::default(),
             edge_integral: PerStrip::default(),
@@ -478,6 +497,7 @@ impl StripModel for CoupledStrips {
                     self.half[m] = a;
                     self.rhs[m] = rhs;
                     self.bound[m] = bound;
+                    self.peak[m] = peak;
                     self.state[m] = self.warm[i];
                     rhs_max = rhs_max.max(rhs.abs());
                     m += 1;
@@ -496,7 +516,7 @@ impl StripModel for CoupledStrips {
                 self.unconverged += 1;
             }
         }
-        // C4.
+        // C4, with the length of a lightly loaded strip shortened (C5).
         self.warm[..n].fill(Load::Free);
         for r in 0..m {
             let i = self.strip[r];
@@ -504,7 +524,14 @@ impl StripModel for CoupledStrips {
             let y = self.load[r];
             if y > 0.0 {
                 let a = self.half[r];
-                out.set(i, a, PI * params.e_star * y / a, geom.ds);
+                let pmax = PI * y / a;
+                let shortening = (pmax / (LIGHT_LOAD * self.peak[r])).min(1.0);
+                out.set(
+                    i,
+                    a * shortening,
+                    params.e_star * pmax / shortening,
+                    geom.ds,
+                );
             }
         }
         out.normal_force()
