@@ -802,7 +802,7 @@ mod tests {
         // N(δ) from below the first strip's entry through strips entering and a second region
         // appearing: non-decreasing; while every loaded region spans ≥ 3 strips no 0.5 % step of
         // δ raises N by more than the trend δ^{3/2} (× 1.0075) and a margin for the entering edge
-        // strips (measured 1.0103 on the Hertz gap, 1.0143 on the flattened gap at 24 strips):
+        // strips (measured ≤ 1.0121 on the Hertz gap, the two wells and the flattened gap at 24 strips):
         // × 1.02. A region's first strips rise steeper (not bounded here).
         for geom in [hertz_gap_48(), two_wells(60), flattened(24, 0.4e-3)] {
             let mut model = CoupledStrips::default();
