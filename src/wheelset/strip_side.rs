@@ -38,7 +38,7 @@ use crate::normal::{NormalModel, NormalParams, StripModel};
 use crate::tangential::fastsim::Creepage;
 use crate::tangential::patch::{strip_flexibilities, EquivalentEllipse, TangentialModel};
 use crate::tangential::strip_fastsim::TangentialStrip;
-use crate::wheelset::balance::{balance, ForceLaw};
+use crate::wheelset::balance::{balance, ForceLaw, Guess};
 
 /// One non-elliptic patch: its plane, strips, model state, solution and weight.
 pub struct StripPatch {
@@ -317,15 +317,13 @@ impl StripSide {
         table: &HertzShapeTable,
     ) -> f64 {
         let first = approach.max(1e-9);
-        let Ok(balanced) = balance(
-            touch,
-            first,
-            q,
-            LOAD_ITERATIONS,
-            ForceLaw::General,
-            None,
-            |dz| Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q),
-        );
+        let guess = Guess {
+            approach: first,
+            ..Guess::default()
+        };
+        let Ok(balanced) = balance(touch, guess, q, LOAD_ITERATIONS, ForceLaw::General, |dz| {
+            Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q)
+        });
         if !balanced.evaluated {
             self.vertical_force(balanced.lowering, params, table);
         }
