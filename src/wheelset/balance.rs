@@ -55,8 +55,8 @@ pub struct Balanced {
     /// [N/m]; NaN where fewer than two points were evaluated. A good first step of the next
     /// balance of the same wheel under a slightly different load.
     pub slope: f64,
-    /// The residual F − load at `lowering` [N] (within [`LOAD_TOLERANCE`] × load unless the
-    /// iteration closed on a jump of the force).
+    /// The residual F − load at `lowering` [N] (within the tolerance unless the iteration
+    /// closed on a jump of the force).
     pub residual: f64,
 }
 
@@ -83,8 +83,8 @@ pub enum ForceLaw {
     Hertzian,
 }
 
-/// Finds the lowering dz at which `residual(dz)` = F(dz) − load [N] vanishes (to
-/// [`LOAD_TOLERANCE`] × load), given the touching lowering `touch` (where the residual is
+/// Finds the lowering dz at which `residual(dz)` = F(dz) − load [N] vanishes (to `tolerance` ×
+/// load, normally [`LOAD_TOLERANCE`]), given the touching lowering `touch` (where the residual is
 /// −load), a first approach estimate ([`Guess`]) and at most `iterations` Illinois
 /// steps. Errors of `residual` are passed on. With [`ForceLaw::Hertzian`] (the multi-Hertzian
 /// wheel) the regula falsi runs in u = δ^{3/2} (δ = dz − touch), where a Hertz patch's force is
@@ -107,6 +107,7 @@ pub fn balance<E>(
     touch: f64,
     guess: Guess,
     load: f64,
+    tolerance: f64,
     iterations: usize,
     law: ForceLaw,
     mut residual: impl FnMut(f64) -> Result<f64, E>,
@@ -150,7 +151,7 @@ pub fn balance<E>(
     for _ in 0..BRACKET_TRIALS {
         let dz = touch + approach;
         let f = evaluate(dz, &mut recent)?;
-        if f.abs() <= LOAD_TOLERANCE * load {
+        if f.abs() <= tolerance * load {
             return Ok(Balanced {
                 lowering: dz,
                 evaluated: true,
@@ -180,7 +181,7 @@ pub fn balance<E>(
         let force = f + load;
         if f > 0.0 {
             (hi, f_hi) = (dz, f);
-            if dz - lo <= LOAD_TOLERANCE * approach || f_lo > -load {
+            if dz - lo <= tolerance * approach || f_lo > -load {
                 // Bracketed on both sides by evaluated points.
                 break;
             }
@@ -225,7 +226,7 @@ pub fn balance<E>(
         let mid = bracket.inside_or_midpoint(dz_of(bracket.secant_in(u_of)));
         let f_mid = evaluate(mid, &mut recent)?;
         last = mid;
-        if f_mid.abs() <= LOAD_TOLERANCE * load {
+        if f_mid.abs() <= tolerance * load {
             return Ok(Balanced {
                 lowering: mid,
                 evaluated: true,
@@ -416,25 +417,29 @@ pub(super) fn creep_upward(out: &SideResult) -> f64 {
 /// The prescribed wheel load `q` [N] is carried by the normal forces and the creep forces'
 /// vertical component together. `pass(k, target)` balances the normal forces against `target`
 /// = q less the current estimate of that component, solves the tangential problem there and
-/// returns the component it finds (`None`: no tangential problem, stop). The estimate starts
-/// from `start` (zero, or the previous step's) and is updated by [`CreepFixedPoint`] until it
-/// changes by at most [`CREEP_TOLERANCE`] of q, or for [`CREEP_PASSES`] passes. Returns the last
-/// component found (`None` if no pass solved a tangential problem).
+/// returns the component it finds and whether its balance met [`LOAD_TOLERANCE`] (`None`: no
+/// tangential problem, stop). The estimate starts from `start` (zero, or the previous step's)
+/// and is updated by [`CreepFixedPoint`] until it changes by at most [`CREEP_TOLERANCE`] of q in
+/// a pass balanced to [`LOAD_TOLERANCE`], or for [`CREEP_PASSES`] passes. (A first pass may
+/// balance only to [`CREEP_TOLERANCE`]: its target carries the estimate's error, and the next
+/// pass starts from its root.) Returns the last component found (`None` if no pass solved a
+/// tangential problem).
 pub(super) fn creep_passes(
     q: f64,
     start: f64,
-    mut pass: impl FnMut(usize, f64) -> Result<Option<f64>, WheelsetError>,
+    mut pass: impl FnMut(usize, f64) -> Result<Option<(f64, bool)>, WheelsetError>,
 ) -> Result<Option<f64>, WheelsetError> {
     let mut creep = if start.is_finite() { start } else { 0.0 };
     let mut fixed_point = CreepFixedPoint::default();
     let mut found = None;
     for k in 0..CREEP_PASSES {
         let target = (q - creep).max(MIN_NORMAL_SHARE * q);
-        let Some(new_creep) = pass(k, target)? else {
+        let Some((new_creep, tight)) = pass(k, target)? else {
             break;
         };
         found = Some(new_creep);
-        if k + 1 == CREEP_PASSES || (new_creep - creep).abs() <= CREEP_TOLERANCE * q {
+        let converged = (new_creep - creep).abs() <= CREEP_TOLERANCE * q;
+        if k + 1 == CREEP_PASSES || (converged && tight) {
             break;
         }
         creep = fixed_point.next(creep, new_creep);
@@ -534,7 +539,7 @@ mod tests {
         let mut evaluations = [0usize; 2];
         let laws = [ForceLaw::General, ForceLaw::Hertzian];
         for (law, calls) in laws.into_iter().zip(&mut evaluations) {
-            let b = balance(touch, start(1e-5), load, 60, law, |dz| {
+            let b = balance(touch, start(1e-5), load, LOAD_TOLERANCE, 60, law, |dz| {
                 *calls += 1;
                 Ok::<_, ()>(k * (dz - touch).max(0.0).powf(1.5) - load)
             })
@@ -592,15 +597,23 @@ mod tests {
         // F jumps from 0.9 load to 1.2 load at dz = 1e−4: no exact root; the end with the
         // smaller residual (0.1 load below the jump) is returned.
         let load = 1e4;
-        let b = balance(0.0, start(1e-5), load, 60, ForceLaw::General, |dz| {
-            Ok::<_, ()>(
-                if dz < 1e-4 {
-                    0.9 * load * dz / 1e-4
-                } else {
-                    1.2 * load
-                } - load,
-            )
-        })
+        let b = balance(
+            0.0,
+            start(1e-5),
+            load,
+            LOAD_TOLERANCE,
+            60,
+            ForceLaw::General,
+            |dz| {
+                Ok::<_, ()>(
+                    if dz < 1e-4 {
+                        0.9 * load * dz / 1e-4
+                    } else {
+                        1.2 * load
+                    } - load,
+                )
+            },
+        )
         .unwrap();
         assert!((b.lowering - 1e-4).abs() < 1e-12, "{b:?}");
     }
@@ -608,9 +621,15 @@ mod tests {
     #[test]
     fn residual_errors_are_passed_on() {
         assert_eq!(
-            balance(0.0, start(1e-5), 1.0, 10, ForceLaw::General, |_| {
-                Err::<f64, _>("bad")
-            }),
+            balance(
+                0.0,
+                start(1e-5),
+                1.0,
+                LOAD_TOLERANCE,
+                10,
+                ForceLaw::General,
+                |_| { Err::<f64, _>("bad") }
+            ),
             Err("bad")
         );
     }

@@ -1,7 +1,7 @@
 //! The multi-Hertzian side of a wheel: one Hertz patch per patch group, FASTSIM on each, the
 //! prescribed-load iteration.
 
-use super::balance::{creep_passes, creep_upward, WarmStart};
+use super::balance::{creep_passes, creep_upward, WarmStart, CREEP_TOLERANCE, LOAD_TOLERANCE};
 use super::kinematics::{creepages_at, planar_tangential, point_position};
 use super::{
     store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput,
@@ -297,14 +297,23 @@ pub(super) fn hertz_side(
         slope: first_slope,
     };
     let mut last_target = None;
-    let creep = creep_passes(q, start_creep, |_, target| {
+    let creep = creep_passes(q, start_creep, |k, target| {
         if let (Some(old), Some(f)) = (last_target, guess.residual) {
             guess.residual = Some(f + old - target);
         }
+        // The first pass's target carries the creep estimate's error: balancing it beyond that
+        // is wasted (the next pass starts from its root). Normal forces alone (the strip
+        // models' starting point and layout) are balanced fully.
+        let tolerance = if k == 0 && tangential {
+            CREEP_TOLERANCE
+        } else {
+            LOAD_TOLERANCE
+        };
         let balanced = balance(
             touch,
             guess,
             target,
+            tolerance,
             LOAD_ITERATIONS,
             ForceLaw::Hertzian,
             |dz| {
@@ -332,7 +341,8 @@ pub(super) fn hertz_side(
         } else {
             evaluate_side(side, ctx, input, balanced.lowering, level, out, true)?;
         }
-        Ok(Some(creep_upward(out)))
+        let tight = balanced.residual.abs() <= LOAD_TOLERANCE * target;
+        Ok(Some((creep_upward(out), tight)))
     })?;
     Ok((creep, guess.slope.unwrap_or(f64::NAN)))
 }
