@@ -558,8 +558,8 @@ impl Model for WheelRailContact {
     /// The solver's history (the load iteration's warm starts, `wheelset::WarmStart`, and the
     /// patches' output slots, `wheelset::Slot`): a version byte, then per wheel (left, right) a
     /// flag byte (0 none, else 1 + the steps of history) and the approach [m], creep component
-    /// [N], their changes over the last step, the changes' bends and the strip ratio as
-    /// little-endian f64, then per wheel and output slot a presence
+    /// [N] and load-balance slope [N/m^1.5], each with its change over the last step and that
+    /// change's bend, and the strip ratio as little-endian f64, then per wheel and output slot a presence
     /// byte, the patch's `yRail` [m] as little-endian f64 and its index among the wheel's
     /// patches. Nothing before initialization.
     fn save_state(&self, out: &mut Vec<u8>) {
