@@ -403,12 +403,7 @@ fn normalised_centre(i: usize, n: usize) -> f64 {
 /// [−1, 1], relative to its integral π/2 [-]: +0.97 % at 10, +0.34 % at 20, +0.12 % at 40
 /// elements, → 1. Sampled pressures divided by it sum to the strip's load exactly.
 pub fn semi_ellipse_midpoint_ratio(n: usize) -> f64 {
-    let sum: f64 = (0..n)
-        .map(|i| {
-            let u = normalised_centre(i, n);
-            ((1.0 - u) * (1.0 + u)).max(0.0).sqrt()
-        })
-        .sum();
+    let sum: f64 = (0..n).map(|i| grid_element(i, n).1).sum();
     sum * (2.0 / n as f64) / std::f64::consts::FRAC_PI_2
 }
 
@@ -416,6 +411,36 @@ pub fn semi_ellipse_midpoint_ratio(n: usize) -> f64 {
 fn usable_flexibilities(flex: [f64; 3]) -> bool {
     flex.iter()
         .all(|&l| l > 0.0 && l.is_finite() && (1.0 / l).is_finite())
+}
+
+/// Element centres ζ_i ∈ (−1, 1) of a strip of n equal elements ([`normalised_centre`]) and the
+/// semi-ellipse √(1 − ζ_i²) there. They are the same for every strip of n elements: the patch
+/// solver (`crate::tangential::strip_fastsim`) tabulates them once ([`StripGrid::new`]),
+/// [`solve_strip`] evaluates them per element ([`grid_element`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub(crate) struct StripGrid {
+    /// (ζ_i, √(1 − ζ_i²)), index 0 at the trailing edge.
+    elements: Vec<(f64, f64)>,
+}
+
+impl StripGrid {
+    /// The grid of `n` elements.
+    pub(crate) fn new(n: usize) -> Self {
+        Self {
+            elements: (0..n).map(|i| grid_element(i, n)).collect(),
+        }
+    }
+
+    /// Number of elements.
+    pub(crate) fn len(&self) -> usize {
+        self.elements.len()
+    }
+}
+
+/// Element `i` of `n`: its centre ζ ∈ (−1, 1) and √(1 − ζ²).
+fn grid_element(i: usize, n: usize) -> (f64, f64) {
+    let zeta = normalised_centre(i, n);
+    (zeta, ((1.0 - zeta) * (1.0 + zeta)).max(0.0).sqrt())
 }
 
 /// Solves one strip with nx equal elements from its leading edge x_c + x_l to its trailing edge
@@ -486,6 +511,245 @@ pub(crate) fn solve_strip_with_pressure(
     slipping: &mut [bool],
 ) -> FastripStripSums {
     let n = qx.len();
+    let problem = StripProblem {
+        strip,
+        pressure,
+        scales,
+        mu,
+        flex,
+        creepage,
+    };
+    let out = StripRow { qx, qy, slipping };
+    solve_elements(&problem, |i| grid_element(i, n), out)
+}
+
+/// [`solve_strip_with_pressure`] of `problem` on a tabulated grid (its length must be the
+/// slices'): the patch solver's entry, the same results without a per-element centre and root.
+pub(crate) fn solve_strip_on_grid(
+    problem: &StripProblem<'_>,
+    grid: &StripGrid,
+    qx: &mut [f64],
+    qy: &mut [f64],
+    slipping: &mut [bool],
+) -> FastripStripSums {
+    let n = grid.len();
+    assert!(qx.len() == n && qy.len() == n && slipping.len() == n);
+    let out = StripRow { qx, qy, slipping };
+    solve_elements(problem, |i| grid.elements[i], out)
+}
+
+/// The inputs of one strip solve (the arguments of [`solve_strip_with_pressure`]).
+pub(crate) struct StripProblem<'a> {
+    pub(crate) strip: &'a FastripStrip,
+    /// The bound's pressure (module header, choice 5).
+    pub(crate) pressure: StripPressure,
+    pub(crate) scales: &'a FastripScales,
+    /// Friction of the strip.
+    pub(crate) mu: f64,
+    /// [L1, L2, L3] of the FASTSIM direction pass [m/Pa].
+    pub(crate) flex: [f64; 3],
+    /// (ξ, η, φ) of the strip [-, -, 1/m].
+    pub(crate) creepage: [f64; 3],
+}
+
+/// The element outputs of one strip.
+struct StripRow<'a> {
+    qx: &'a mut [f64],
+    qy: &'a mut [f64],
+    slipping: &'a mut [bool],
+}
+
+/// FS3 in the adhesion zone of one strip, per element, with the strip's constants hoisted.
+struct AdhesionZone {
+    /// Trailing end of the adhesion zone, ζ = −1 + 2δ.
+    start: f64,
+    /// 2δ.
+    two_delta: f64,
+    /// μ_s pmax [Pa] and μ_s pmax κ [Pa].
+    mu_pmax: f64,
+    mu_pmax_kappa: f64,
+    lambda: f64,
+    /// φ* of the strip (λ − λ').
+    spin: f64,
+    /// Whether FS3 can exceed the bound (|φ*| > 1, module header choice 2): for |φ*| ≤ 1 it
+    /// provably does not, and the check is skipped.
+    check_bound: bool,
+}
+
+impl AdhesionZone {
+    /// The zone of `theory` under the traction amplitude μ_s pmax (`mu_pmax`); None without one.
+    fn of(theory: StripTheory, mu_pmax: f64) -> Option<Self> {
+        match theory {
+            StripTheory::Partial {
+                delta,
+                kappa,
+                lambda,
+                spin,
+            } => Some(Self {
+                start: -1.0 + 2.0 * delta,
+                two_delta: 2.0 * delta,
+                mu_pmax,
+                mu_pmax_kappa: mu_pmax * kappa,
+                lambda,
+                spin,
+                check_bound: spin.abs() > 1.0,
+            }),
+            StripTheory::FullSliding => None,
+        }
+    }
+
+    /// FS3's traction (q_x, q_y) [Pa] at the element centre ζ (`root` = √(1 − ζ²)) if the
+    /// element lies in the adhesion zone and the traction within μ_s p (choice 2).
+    #[inline]
+    fn traction(&self, zeta: f64, root: f64) -> Option<(f64, f64)> {
+        if zeta <= self.start {
+            return None;
+        }
+        let one_minus = 1.0 - zeta;
+        let s1 = root;
+        let s2 = (one_minus * (1.0 + zeta - self.two_delta)).max(0.0).sqrt();
+        // √(1−ζ²) − √((1−δ)² − (ζ−δ)²) without cancellation (exact 0 at δ = 0).
+        let diff = if s1 + s2 > 0.0 {
+            self.two_delta * one_minus / (s1 + s2)
+        } else {
+            0.0
+        };
+        let tx = self.mu_pmax_kappa * diff;
+        let ty = self.mu_pmax * (self.lambda * diff + self.spin * s2);
+        if self.check_bound {
+            let bound = self.mu_pmax * s1 * (1.0 + BOUND_TOLERANCE);
+            if tx * tx + ty * ty > bound * bound {
+                return None;
+            }
+        }
+        Some((tx, ty))
+    }
+}
+
+/// The FASTSIM direction pass over one strip (F3 in units of B = μ × the bound's peak
+/// pressure), marched from the leading edge.
+struct DirectionPass {
+    /// Traction of the last element [B].
+    px: f64,
+    py: f64,
+    /// Rigid-slip increments per element [B]: along x, along y at x = x_c and per unit x − x_c.
+    step_x: f64,
+    step_y_at_centre: f64,
+    step_y_per_x: f64,
+    /// L1, L2 [m/Pa], B [Pa] and the true slip over the marched one (> 1 only when the overflow
+    /// guard scaled the creepages down), for the slip displacement.
+    l1: f64,
+    l2: f64,
+    bound_peak: f64,
+    slip_factor: f64,
+}
+
+impl DirectionPass {
+    /// Advances to the element at x − x_c = `xr` with bound shape `shape` (bound B·shape):
+    /// the adhesion trial if the element slips (the traction is then scaled onto the bound),
+    /// None if it adheres.
+    #[inline]
+    fn advance(&mut self, xr: f64, shape: f64) -> Option<(f64, f64)> {
+        let trial_x = self.px - self.step_x;
+        let trial_y = self.py - (self.step_y_at_centre + self.step_y_per_x * xr);
+        let trial_sq = trial_x * trial_x + trial_y * trial_y;
+        if trial_sq > shape * shape {
+            let f = shape / trial_sq.sqrt();
+            self.px = trial_x * f;
+            self.py = trial_y * f;
+            Some((trial_x, trial_y))
+        } else {
+            self.px = trial_x;
+            self.py = trial_y;
+            None
+        }
+    }
+
+    /// Slip displacement [m] of an element that slipped from `trial` (choice 6).
+    #[inline]
+    fn slip(&self, trial: (f64, f64)) -> f64 {
+        norm(self.l1 * (self.px - trial.0), self.l2 * (self.py - trial.1))
+            * self.bound_peak
+            * self.slip_factor
+    }
+
+    /// Unit vector along the pass's traction ((0, 0) if it is zero).
+    #[inline]
+    fn direction(&self) -> (f64, f64) {
+        let sq = self.px * self.px + self.py * self.py;
+        if sq >= f64::MIN_POSITIVE {
+            // Squares far inside the f64 range: one root and one reciprocal.
+            let r = 1.0 / sq.sqrt();
+            (self.px * r, self.py * r)
+        } else {
+            unit_direction(self.px, self.py)
+        }
+    }
+}
+
+/// The pass of `problem` with `dx` per element, None where the flexibilities or the bound are
+/// unusable (the rigid-slip direction is used instead). The overflow guard scales the
+/// creepages down when the increment per element exceeds the peak bound by more than
+/// [`MAX_OVERDRIVE`].
+fn direction_pass(problem: &StripProblem<'_>, dx: f64) -> Option<DirectionPass> {
+    let bound_peak = problem.mu * problem.pressure.peak;
+    if !(usable_flexibilities(problem.flex) && bound_peak > 0.0) {
+        return None;
+    }
+    let [l1, l2, l3] = problem.flex;
+    let [xi, eta, phi] = problem.creepage;
+    let FastripStrip { y, x_c, .. } = *problem.strip;
+    let spin_offset = SPIN_OFFSET_FRACTION * dx;
+    // Unit creepage (mixed units are fine for a normaliser) and the overflow guard.
+    let magnitude = xi.abs().max(eta.abs()).max(phi.abs());
+    // True slip / marched slip: > 1 only when the overflow guard scaled the creepages down (in
+    // that fully sliding regime the slip is proportional to the creepage).
+    let mut slip_factor = 1.0;
+    let mut pass_creepage = [0.0; 3];
+    if magnitude > 0.0 {
+        let unit = [xi / magnitude, eta / magnitude, phi / magnitude];
+        let [u_xi, u_eta, u_phi] = unit;
+        let reach = x_c.abs() + problem.strip.half_length + dx;
+        let unit_overdrive = (u_xi.abs() / l1
+            + u_phi.abs() * y.abs() / l3
+            + u_eta.abs() / l2
+            + u_phi.abs() * reach / l3)
+            * dx
+            / bound_peak;
+        if !unit_overdrive.is_finite() {
+            return None;
+        }
+        let scale = if unit_overdrive > 0.0 && magnitude > MAX_OVERDRIVE / unit_overdrive {
+            MAX_OVERDRIVE / unit_overdrive
+        } else {
+            magnitude
+        };
+        slip_factor = magnitude / scale;
+        pass_creepage = unit.map(|u| u * scale);
+    }
+    let [c_xi, c_eta, c_phi] = pass_creepage;
+    Some(DirectionPass {
+        px: 0.0,
+        py: 0.0,
+        step_x: (c_xi / l1 - c_phi * y / l3) * dx / bound_peak,
+        step_y_at_centre: (c_eta / l2 + c_phi * (x_c + spin_offset) / l3) * dx / bound_peak,
+        step_y_per_x: c_phi / l3 * dx / bound_peak,
+        l1,
+        l2,
+        bound_peak,
+        slip_factor,
+    })
+}
+
+/// Solves `problem` on the elements given by `element` (i ↦ (ζ_i, √(1 − ζ_i²)), i < the
+/// output's length), writing every element of `out`.
+fn solve_elements(
+    problem: &StripProblem<'_>,
+    element: impl Fn(usize) -> (f64, f64),
+    out: StripRow<'_>,
+) -> FastripStripSums {
+    let StripRow { qx, qy, slipping } = out;
+    let n = qx.len();
     let mut sums = FastripStripSums {
         n_elements: n,
         ..FastripStripSums::default()
@@ -493,13 +757,14 @@ pub(crate) fn solve_strip_with_pressure(
     if n == 0 {
         return sums;
     }
-    let [xi, eta, phi] = creepage;
+    let (pressure, mu) = (problem.pressure, problem.mu);
+    let [xi, eta, phi] = problem.creepage;
     let FastripStrip {
         y,
         x_c,
         half_length: x_l,
         pmax,
-    } = *strip;
+    } = *problem.strip;
     let dx = 2.0 * x_l / n as f64;
     let mu_pmax = mu * pmax;
     let loaded = [y, x_c, x_l, pmax, mu, xi, eta, phi]
@@ -519,7 +784,7 @@ pub(crate) fn solve_strip_with_pressure(
     if !loaded {
         // No load: no traction; an element slips where its rigid slip is not zero.
         for i in 0..n {
-            let x = x_c + x_l * normalised_centre(i, n);
+            let x = x_c + x_l * element(i).0;
             let wx = xi - phi * y;
             let wy = eta + phi * (x + spin_offset);
             let slip = wx != 0.0 || wy != 0.0;
@@ -533,138 +798,71 @@ pub(crate) fn solve_strip_with_pressure(
 
     // Strip-theory coefficients (FS2/FS3) under the strip's own traction curvature μ pmax/x_l;
     // ρ = (μ p0/a)/(μ pmax/x_l) (choice 4), computed without forming μ pmax/x_l.
-    let rho = scales.traction_curvature * (x_l / mu_pmax);
-    let theory = strip_theory(scales, rho, y, x_c, x_l, phi);
-
-    // FASTSIM direction pass, in units of B = μ × peak bound pressure.
+    let rho = problem.scales.traction_curvature * (x_l / mu_pmax);
+    let adhesion_zone =
+        AdhesionZone::of(strip_theory(problem.scales, rho, y, x_c, x_l, phi), mu_pmax);
     let bound_peak = mu * pressure.peak;
-    let fastsim_ok = usable_flexibilities(flex) && bound_peak > 0.0;
-    let [l1, l2, l3] = flex;
-    // Unit creepage (mixed units are fine for a normaliser) and the overflow guard.
-    let magnitude = xi.abs().max(eta.abs()).max(phi.abs());
-    let unit = if magnitude > 0.0 {
-        [xi / magnitude, eta / magnitude, phi / magnitude]
-    } else {
-        [0.0; 3]
-    };
-    let mut pass_creepage = [0.0; 3];
-    // True slip / marched slip: > 1 only when the overflow guard scaled the creepages down (in
-    // that fully sliding regime the slip is proportional to the creepage).
-    let mut slip_factor = 1.0;
-    let mut use_fastsim = fastsim_ok;
-    if fastsim_ok && magnitude > 0.0 {
-        let [u_xi, u_eta, u_phi] = unit;
-        let reach = x_c.abs() + x_l + dx;
-        let unit_overdrive = (u_xi.abs() / l1
-            + u_phi.abs() * y.abs() / l3
-            + u_eta.abs() / l2
-            + u_phi.abs() * reach / l3)
-            * dx
-            / bound_peak;
-        if unit_overdrive.is_finite() {
-            let scale = if unit_overdrive > 0.0 && magnitude > MAX_OVERDRIVE / unit_overdrive {
-                MAX_OVERDRIVE / unit_overdrive
-            } else {
-                magnitude
-            };
-            slip_factor = magnitude / scale;
-            pass_creepage = unit.map(|u| u * scale);
-        } else {
-            use_fastsim = false;
-        }
-    }
-    let [c_xi, c_eta, c_phi] = pass_creepage;
-    let step_x = (c_xi / l1 - c_phi * y / l3) * dx / bound_peak;
-    let step_y_at_centre = (c_eta / l2 + c_phi * (x_c + spin_offset) / l3) * dx / bound_peak;
-    let step_y_per_x = c_phi / l3 * dx / bound_peak;
+    let mut pass = direction_pass(problem, dx);
+    // The bound's shape is the strip's own √(1 − ζ²) unless its pressure has another length.
+    let own_shape = pressure.half_length == x_l;
 
-    let mut fs_x = 0.0_f64;
-    let mut fs_y = 0.0_f64;
+    let (mut sum_qx, mut sum_qy, mut sum_zeta_qy) = (0.0_f64, 0.0_f64, 0.0_f64);
     let mut max_sq = 0.0_f64;
     let mut power = 0.0_f64;
     for i in (0..n).rev() {
-        let zeta = normalised_centre(i, n);
+        let (zeta, root) = element(i);
         let xr = x_l * zeta;
-        let x = x_c + xr;
-        let shape = pressure.shape(xr);
-        let mu_p = bound_peak * shape;
-
-        // FASTSIM (F3), normalised by B: adhesion trial, scaled back onto the bound if above.
-        // `slip` is the pass's slip displacement of the element [m] (choice 6).
-        let (direction, fastsim_slip) = if use_fastsim {
-            let trial_x = fs_x - step_x;
-            let trial_y = fs_y - (step_y_at_centre + step_y_per_x * xr);
-            let trial = norm(trial_x, trial_y);
-            let slip = if trial > shape {
-                let f = shape / trial;
-                fs_x = trial_x * f;
-                fs_y = trial_y * f;
-                norm(l1 * (fs_x - trial_x), l2 * (fs_y - trial_y)) * bound_peak * slip_factor
-            } else {
-                fs_x = trial_x;
-                fs_y = trial_y;
-                0.0
-            };
-            (unit_direction(fs_x, fs_y), slip)
-        } else {
-            // Large-creepage limit with equal flexibilities: against the rigid slip, and the
-            // slip is the rigid slip over the element.
-            let [u_xi, u_eta, u_phi] = unit;
-            let wx = xi - phi * y;
-            let wy = eta + phi * (x + spin_offset);
-            (
-                unit_direction(-(u_xi - u_phi * y), -(u_eta + u_phi * (x + spin_offset))),
-                wx.hypot(wy) * dx,
-            )
-        };
-
-        // FS3 in the adhesion zone, else μp along the FASTSIM direction.
-        let mut adhesion = None;
-        if let StripTheory::Partial {
-            delta,
-            kappa,
-            lambda,
-            spin,
-        } = theory
-        {
-            if zeta > -1.0 + 2.0 * delta {
-                let one_minus = 1.0 - zeta;
-                let s1 = (one_minus * (1.0 + zeta)).max(0.0).sqrt();
-                let s2 = (one_minus * (1.0 + zeta - 2.0 * delta)).max(0.0).sqrt();
-                // √(1−ζ²) − √((1−δ)² − (ζ−δ)²) without cancellation (exact 0 at δ = 0).
-                let diff = if s1 + s2 > 0.0 {
-                    2.0 * delta * one_minus / (s1 + s2)
-                } else {
-                    0.0
+        let shape = if own_shape { root } else { pressure.shape(xr) };
+        let pass_slip = pass.as_mut().and_then(|p| p.advance(xr, shape));
+        // FS3 in the adhesion zone, else μp along the FASTSIM direction (choice 3).
+        let adhesion = adhesion_zone.as_ref().and_then(|z| z.traction(zeta, root));
+        let (tx, ty) = match (adhesion, &pass) {
+            (Some(q), _) => {
+                sums.n_adhesion += 1;
+                q
+            }
+            (None, Some(p)) => {
+                let mu_p = bound_peak * shape;
+                let (q, contribution) = match pass_slip {
+                    // The pass slipped onto the bound: its traction B·p has |B·p| = μp.
+                    Some(trial) => ((bound_peak * p.px, bound_peak * p.py), mu_p * p.slip(trial)),
+                    None => {
+                        let (ux, uy) = p.direction();
+                        ((mu_p * ux, mu_p * uy), 0.0)
+                    }
                 };
-                let tx = mu_pmax * kappa * diff;
-                let ty = mu_pmax * (lambda * diff + spin * s2);
-                if norm(tx, ty) <= mu_pmax * s1 * (1.0 + BOUND_TOLERANCE) {
-                    adhesion = Some((tx, ty));
+                // NaN only from 0 × ∞ (no traction, absurd slip): contributes nothing.
+                if !contribution.is_nan() {
+                    power += contribution;
                 }
+                q
             }
-        }
-        let (tx, ty, slip) = match adhesion {
-            Some((tx, ty)) => (tx, ty, false),
-            None => (mu_p * direction.0, mu_p * direction.1, true),
+            (None, None) => {
+                // Large-creepage limit with equal flexibilities: against the rigid slip, and the
+                // slip is the rigid slip over the element.
+                let mu_p = bound_peak * shape;
+                let x = x_c + xr;
+                let (ux, uy) = unit_direction(-(xi - phi * y), -(eta + phi * (x + spin_offset)));
+                let (wx, wy) = (xi - phi * y, eta + phi * (x + spin_offset));
+                let (tx, ty) = (mu_p * ux, mu_p * uy);
+                let contribution = norm(tx, ty) * (wx.hypot(wy) * dx);
+                if !contribution.is_nan() {
+                    power += contribution;
+                }
+                (tx, ty)
+            }
         };
-        if slip {
-            let contribution = norm(tx, ty) * fastsim_slip;
-            // NaN only from 0 × ∞ (no traction, absurd slip): contributes nothing.
-            if !contribution.is_nan() {
-                power += contribution;
-            }
-        } else {
-            sums.n_adhesion += 1;
-        }
         qx[i] = tx;
         qy[i] = ty;
-        slipping[i] = slip;
-        sums.fx += tx * dx;
-        sums.fy += ty * dx;
-        sums.x_fy += x * ty * dx;
+        slipping[i] = adhesion.is_none();
+        sum_qx += tx;
+        sum_qy += ty;
+        sum_zeta_qy += zeta * ty;
         max_sq = max_sq.max(tx * tx + ty * ty);
     }
+    sums.fx = sum_qx * dx;
+    sums.fy = sum_qy * dx;
+    sums.x_fy = (x_c * sum_qy + x_l * sum_zeta_qy) * dx;
     sums.max_traction = max_sq.sqrt();
     // Saturate instead of reporting ∞ (or NaN from ∞ − ∞ later) for absurd creepages.
     sums.power_density = power.min(f64::MAX);
