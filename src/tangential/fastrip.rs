@@ -598,6 +598,20 @@ impl AdhesionZone {
         }
     }
 
+    /// The first of `n` elements (centres `centre(i)`, increasing) inside the zone ζ > −1 + 2δ;
+    /// `n` if none. Estimated from ζ_i = −1 + (2i + 1)/n, then settled on the centres.
+    fn first_element(&self, n: usize, centre: impl Fn(usize) -> f64) -> usize {
+        // i > nδ − 1/2; the float → integer cast saturates (δ ∈ [0, 1) here).
+        let mut i = ((n as f64 * (self.two_delta / 2.0) + 0.5).max(0.0) as usize).min(n);
+        while i > 0 && centre(i - 1) > self.start {
+            i -= 1;
+        }
+        while i < n && centre(i) <= self.start {
+            i += 1;
+        }
+        i
+    }
+
     /// FS3's traction (q_x, q_y) [Pa] at the element centre ζ (`root` = √(1 − ζ²)) if the
     /// element lies in the adhesion zone and the traction within μ_s p (choice 2).
     #[inline]
@@ -645,10 +659,23 @@ struct DirectionPass {
 }
 
 impl DirectionPass {
+    /// A pass that stays at zero (never slips): stands in where the flexibilities are unusable.
+    const IDLE: Self = Self {
+        px: 0.0,
+        py: 0.0,
+        step_x: 0.0,
+        step_y_at_centre: 0.0,
+        step_y_per_x: 0.0,
+        l1: 0.0,
+        l2: 0.0,
+        bound_peak: 0.0,
+        slip_factor: 0.0,
+    };
+
     /// Advances to the element at x − x_c = `xr` with bound shape `shape` (bound B·shape):
     /// the adhesion trial if the element slips (the traction is then scaled onto the bound),
     /// None if it adheres.
-    #[inline]
+    #[inline(always)]
     fn advance(&mut self, xr: f64, shape: f64) -> Option<(f64, f64)> {
         let trial_x = self.px - self.step_x;
         let trial_y = self.py - (self.step_y_at_centre + self.step_y_per_x * xr);
@@ -799,74 +826,164 @@ fn solve_elements(
     // Strip-theory coefficients (FS2/FS3) under the strip's own traction curvature μ pmax/x_l;
     // ρ = (μ p0/a)/(μ pmax/x_l) (choice 4), computed without forming μ pmax/x_l.
     let rho = problem.scales.traction_curvature * (x_l / mu_pmax);
-    let adhesion_zone =
-        AdhesionZone::of(strip_theory(problem.scales, rho, y, x_c, x_l, phi), mu_pmax);
-    let bound_peak = mu * pressure.peak;
-    let mut pass = direction_pass(problem, dx);
+    let theory = strip_theory(problem.scales, rho, y, x_c, x_l, phi);
+    let adhesion_zone = AdhesionZone::of(theory, mu_pmax);
+    let slip_zone = SlipZone {
+        bound_peak: mu * pressure.peak,
+        rigid_slip_x: xi - phi * y,
+        eta,
+        phi,
+        x_c,
+        spin_offset,
+        dx,
+    };
+    let (mut pass, rigid) = match direction_pass(problem, dx) {
+        Some(pass) => (pass, false),
+        None => (DirectionPass::IDLE, true),
+    };
     // The bound's shape is the strip's own √(1 − ζ²) unless its pressure has another length.
     let own_shape = pressure.half_length == x_l;
-
-    let (mut sum_qx, mut sum_qy, mut sum_zeta_qy) = (0.0_f64, 0.0_f64, 0.0_f64);
-    let mut max_sq = 0.0_f64;
-    let mut power = 0.0_f64;
-    for i in (0..n).rev() {
+    let shape_at = |zeta: f64, root: f64| {
+        if own_shape {
+            root
+        } else {
+            pressure.shape(x_l * zeta)
+        }
+    };
+    // Elements i ≥ `first_adhesion` lie in the adhesion zone ζ_i > −1 + 2δ (ζ_i increases
+    // with i): marched first, from the leading edge, then the slip zone behind it.
+    let first_adhesion = adhesion_zone
+        .as_ref()
+        .map_or(n, |z| z.first_element(n, |i| element(i).0));
+    let mut acc = StripAccumulator::default();
+    for i in (first_adhesion..n).rev() {
         let (zeta, root) = element(i);
-        let xr = x_l * zeta;
-        let shape = if own_shape { root } else { pressure.shape(xr) };
-        let pass_slip = pass.as_mut().and_then(|p| p.advance(xr, shape));
-        // FS3 in the adhesion zone, else μp along the FASTSIM direction (choice 3).
-        let adhesion = adhesion_zone.as_ref().and_then(|z| z.traction(zeta, root));
-        let (tx, ty) = match (adhesion, &pass) {
-            (Some(q), _) => {
-                sums.n_adhesion += 1;
-                q
-            }
-            (None, Some(p)) => {
-                let mu_p = bound_peak * shape;
-                let (q, contribution) = match pass_slip {
-                    // The pass slipped onto the bound: its traction B·p has |B·p| = μp.
-                    Some(trial) => ((bound_peak * p.px, bound_peak * p.py), mu_p * p.slip(trial)),
-                    None => {
-                        let (ux, uy) = p.direction();
-                        ((mu_p * ux, mu_p * uy), 0.0)
-                    }
-                };
-                // NaN only from 0 × ∞ (no traction, absurd slip): contributes nothing.
-                if !contribution.is_nan() {
-                    power += contribution;
-                }
-                q
-            }
-            (None, None) => {
-                // Large-creepage limit with equal flexibilities: against the rigid slip, and the
-                // slip is the rigid slip over the element.
-                let mu_p = bound_peak * shape;
-                let x = x_c + xr;
-                let (ux, uy) = unit_direction(-(xi - phi * y), -(eta + phi * (x + spin_offset)));
-                let (wx, wy) = (xi - phi * y, eta + phi * (x + spin_offset));
-                let (tx, ty) = (mu_p * ux, mu_p * uy);
-                let contribution = norm(tx, ty) * (wx.hypot(wy) * dx);
-                if !contribution.is_nan() {
-                    power += contribution;
-                }
-                (tx, ty)
-            }
+        let shape = shape_at(zeta, root);
+        let pass_slip = pass.advance(x_l * zeta, shape);
+        // Inside the zone FS3 only fails its bound check (choice 2).
+        let fs3 = adhesion_zone.as_ref().and_then(|z| z.traction(zeta, root));
+        let (tx, ty) = match fs3 {
+            Some(q) => q,
+            None => slip_zone.traction(&pass, pass_slip, rigid, x_l * zeta, shape, &mut acc),
         };
+        acc.add(zeta, tx, ty, fs3.is_some());
         qx[i] = tx;
         qy[i] = ty;
-        slipping[i] = adhesion.is_none();
-        sum_qx += tx;
-        sum_qy += ty;
-        sum_zeta_qy += zeta * ty;
-        max_sq = max_sq.max(tx * tx + ty * ty);
+        slipping[i] = fs3.is_none();
     }
-    sums.fx = sum_qx * dx;
-    sums.fy = sum_qy * dx;
-    sums.x_fy = (x_c * sum_qy + x_l * sum_zeta_qy) * dx;
-    sums.max_traction = max_sq.sqrt();
+    for i in (0..first_adhesion).rev() {
+        let (zeta, root) = element(i);
+        let shape = shape_at(zeta, root);
+        let xr = x_l * zeta;
+        let pass_slip = pass.advance(xr, shape);
+        let (tx, ty) = slip_zone.traction(&pass, pass_slip, rigid, xr, shape, &mut acc);
+        acc.add(zeta, tx, ty, false);
+        qx[i] = tx;
+        qy[i] = ty;
+        slipping[i] = true;
+    }
+    sums.fx = acc.sum_qx * dx;
+    sums.fy = acc.sum_qy * dx;
+    sums.x_fy = (x_c * acc.sum_qy + x_l * acc.sum_zeta_qy) * dx;
+    sums.max_traction = acc.max_sq.sqrt();
+    sums.n_adhesion = acc.n_adhesion;
     // Saturate instead of reporting ∞ (or NaN from ∞ − ∞ later) for absurd creepages.
-    sums.power_density = power.min(f64::MAX);
+    sums.power_density = acc.power.min(f64::MAX);
     sums
+}
+
+/// Running sums over a strip's elements (tractions in Pa; ×Δx at the end).
+#[derive(Default)]
+struct StripAccumulator {
+    sum_qx: f64,
+    sum_qy: f64,
+    /// Σ ζ q_y (the moment about the strip centre, over x_l).
+    sum_zeta_qy: f64,
+    max_sq: f64,
+    /// Σ_slip |q| |S| [N/m].
+    power: f64,
+    n_adhesion: usize,
+}
+
+impl StripAccumulator {
+    #[inline]
+    fn add(&mut self, zeta: f64, tx: f64, ty: f64, adhesion: bool) {
+        self.sum_qx += tx;
+        self.sum_qy += ty;
+        self.sum_zeta_qy += zeta * ty;
+        let sq = tx * tx + ty * ty;
+        if sq > self.max_sq {
+            self.max_sq = sq;
+        }
+        self.n_adhesion += usize::from(adhesion);
+    }
+
+    /// Adds a slipping element's frictional power density |q| |S|.
+    #[inline]
+    fn add_power(&mut self, contribution: f64) {
+        // NaN only from 0 × ∞ (no traction, absurd slip): contributes nothing.
+        if !contribution.is_nan() {
+            self.power += contribution;
+        }
+    }
+}
+
+/// The slip zone of one strip: μp along the FASTSIM direction (choice 3), or against the
+/// rigid slip where the pass is unusable.
+struct SlipZone {
+    /// B = μ × the bound's peak pressure [Pa].
+    bound_peak: f64,
+    /// Rigid slip along x, ξ − φy [-], and the creepages of the lateral one, η + φ(x + Δx/6).
+    rigid_slip_x: f64,
+    eta: f64,
+    phi: f64,
+    x_c: f64,
+    spin_offset: f64,
+    dx: f64,
+}
+
+impl SlipZone {
+    /// Traction (q_x, q_y) [Pa] of a slipping element at x − x_c = `xr` with bound shape
+    /// `shape`, after `pass` advanced over it (`pass_slip`: its adhesion trial if it slipped);
+    /// the element's frictional power goes to `acc`.
+    #[inline(always)]
+    fn traction(
+        &self,
+        pass: &DirectionPass,
+        pass_slip: Option<(f64, f64)>,
+        rigid: bool,
+        xr: f64,
+        shape: f64,
+        acc: &mut StripAccumulator,
+    ) -> (f64, f64) {
+        let mu_p = self.bound_peak * shape;
+        if rigid {
+            return self.against_rigid_slip(xr, mu_p, acc);
+        }
+        match pass_slip {
+            // The pass slipped onto the bound: its traction B·p has |B·p| = μp.
+            Some(trial) => {
+                acc.add_power(mu_p * pass.slip(trial));
+                (self.bound_peak * pass.px, self.bound_peak * pass.py)
+            }
+            None => {
+                let (ux, uy) = pass.direction();
+                (mu_p * ux, mu_p * uy)
+            }
+        }
+    }
+
+    /// Large-creepage limit with equal flexibilities, where the pass is unusable: μp (`mu_p`)
+    /// against the rigid slip at x − x_c = `xr`, and the slip is the rigid slip over the element.
+    #[cold]
+    fn against_rigid_slip(&self, xr: f64, mu_p: f64, acc: &mut StripAccumulator) -> (f64, f64) {
+        let wx = self.rigid_slip_x;
+        let wy = self.eta + self.phi * (self.x_c + xr + self.spin_offset);
+        let (ux, uy) = unit_direction(-wx, -wy);
+        let (tx, ty) = (mu_p * ux, mu_p * uy);
+        acc.add_power(norm(tx, ty) * (wx.hypot(wy) * self.dx));
+        (tx, ty)
+    }
 }
 
 /// Result of a FaStrip solve on a Hertzian ellipse (forces of the rail on the wheel, contact
