@@ -409,8 +409,10 @@ pub fn semi_ellipse_midpoint_ratio(n: usize) -> f64 {
 
 /// Validity of a flexibility triple for the FASTSIM pass: positive, finite, finite reciprocal.
 fn usable_flexibilities(flex: [f64; 3]) -> bool {
-    flex.iter()
-        .all(|&l| l > 0.0 && l.is_finite() && (1.0 / l).is_finite())
+    // Non-short-circuit `&`: three values, no branches.
+    flex.iter().fold(true, |ok, &l| {
+        ok & (l > 0.0) & l.is_finite() & (1.0 / l).is_finite()
+    })
 }
 
 /// Element centres ζ_i ∈ (−1, 1) of a strip of n equal elements ([`normalised_centre`]) and the
@@ -535,7 +537,8 @@ pub(crate) fn solve_strip_on_grid(
     let n = grid.len();
     assert!(qx.len() == n && qy.len() == n && slipping.len() == n);
     let out = StripRow { qx, qy, slipping };
-    solve_elements(problem, |i| grid.elements[i], out)
+    let elements = &grid.elements[..n];
+    solve_elements(problem, |i| elements[i], out)
 }
 
 /// The inputs of one strip solve (the arguments of [`solve_strip_with_pressure`]).
@@ -855,16 +858,23 @@ fn solve_elements(
     let first_adhesion = adhesion_zone
         .as_ref()
         .map_or(n, |z| z.first_element(n, |i| element(i).0));
+    let first_adhesion = first_adhesion.min(n);
+    let (qx, qy, slipping) = (&mut qx[..n], &mut qy[..n], &mut slipping[..n]);
     let mut acc = StripAccumulator::default();
     for i in (first_adhesion..n).rev() {
         let (zeta, root) = element(i);
         let shape = shape_at(zeta, root);
-        let pass_slip = pass.advance(x_l * zeta, shape);
+        let xr = x_l * zeta;
+        let pass_slip = pass.advance(xr, shape);
         // Inside the zone FS3 only fails its bound check (choice 2).
         let fs3 = adhesion_zone.as_ref().and_then(|z| z.traction(zeta, root));
         let (tx, ty) = match fs3 {
             Some(q) => q,
-            None => slip_zone.traction(&pass, pass_slip, rigid, x_l * zeta, shape, &mut acc),
+            None => {
+                let (q, power) = slip_zone.traction(&pass, pass_slip, rigid, xr, shape);
+                acc.add_power(power);
+                q
+            }
         };
         acc.add(zeta, tx, ty, fs3.is_some());
         qx[i] = tx;
@@ -876,7 +886,8 @@ fn solve_elements(
         let shape = shape_at(zeta, root);
         let xr = x_l * zeta;
         let pass_slip = pass.advance(xr, shape);
-        let (tx, ty) = slip_zone.traction(&pass, pass_slip, rigid, xr, shape, &mut acc);
+        let ((tx, ty), power) = slip_zone.traction(&pass, pass_slip, rigid, xr, shape);
+        acc.add_power(power);
         acc.add(zeta, tx, ty, false);
         qx[i] = tx;
         qy[i] = ty;
@@ -944,8 +955,8 @@ struct SlipZone {
 
 impl SlipZone {
     /// Traction (q_x, q_y) [Pa] of a slipping element at x − x_c = `xr` with bound shape
-    /// `shape`, after `pass` advanced over it (`pass_slip`: its adhesion trial if it slipped);
-    /// the element's frictional power goes to `acc`.
+    /// `shape`, after `pass` advanced over it (`pass_slip`: its adhesion trial if it slipped),
+    /// and its frictional power density |q| |S| [N/m].
     #[inline(always)]
     fn traction(
         &self,
@@ -954,21 +965,21 @@ impl SlipZone {
         rigid: bool,
         xr: f64,
         shape: f64,
-        acc: &mut StripAccumulator,
-    ) -> (f64, f64) {
+    ) -> ((f64, f64), f64) {
         let mu_p = self.bound_peak * shape;
         if rigid {
-            return self.against_rigid_slip(xr, mu_p, acc);
+            return self.against_rigid_slip(xr, mu_p);
         }
         match pass_slip {
             // The pass slipped onto the bound: its traction B·p has |B·p| = μp.
-            Some(trial) => {
-                acc.add_power(mu_p * pass.slip(trial));
-                (self.bound_peak * pass.px, self.bound_peak * pass.py)
-            }
+            Some(trial) => (
+                (self.bound_peak * pass.px, self.bound_peak * pass.py),
+                mu_p * pass.slip(trial),
+            ),
+            // Where the pass adheres its slip is zero.
             None => {
                 let (ux, uy) = pass.direction();
-                (mu_p * ux, mu_p * uy)
+                ((mu_p * ux, mu_p * uy), 0.0)
             }
         }
     }
@@ -976,13 +987,12 @@ impl SlipZone {
     /// Large-creepage limit with equal flexibilities, where the pass is unusable: μp (`mu_p`)
     /// against the rigid slip at x − x_c = `xr`, and the slip is the rigid slip over the element.
     #[cold]
-    fn against_rigid_slip(&self, xr: f64, mu_p: f64, acc: &mut StripAccumulator) -> (f64, f64) {
+    fn against_rigid_slip(&self, xr: f64, mu_p: f64) -> ((f64, f64), f64) {
         let wx = self.rigid_slip_x;
         let wy = self.eta + self.phi * (self.x_c + xr + self.spin_offset);
         let (ux, uy) = unit_direction(-wx, -wy);
         let (tx, ty) = (mu_p * ux, mu_p * uy);
-        acc.add_power(norm(tx, ty) * (wx.hypot(wy) * self.dx));
-        (tx, ty)
+        ((tx, ty), norm(tx, ty) * (wx.hypot(wy) * self.dx))
     }
 }
 
