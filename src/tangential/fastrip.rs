@@ -141,6 +141,10 @@ pub struct FastripScales {
     /// ∂η*/∂η = −2(1−ν)G C22/(π²μp0) [-], for the lateral creepage η + φx_c at the centre of a
     /// strip centred at x_c ≠ 0 (module header, choice 4).
     pub eta_star_per_eta: f64,
+    /// ∂ξ*/∂ξ = −2(1−ν)G C11/(π²μp0) [-].
+    pub xi_star_per_xi: f64,
+    /// ∂φ*/∂φ = −3√(ab) G C23/(2πμp0) [m].
+    pub phi_star_per_phi: f64,
 }
 
 impl FastripScales {
@@ -164,19 +168,30 @@ impl FastripScales {
         phi: f64,
     ) -> Self {
         let mu_p0 = mu * p0;
-        // Zero creepage stays exactly zero even when the factor is not finite.
-        let star = |factor: f64, k: f64| if k == 0.0 { 0.0 } else { factor * k };
-        let xi_factor = -2.0 * (1.0 - nu) * g * c.c11 / (PI * PI * mu_p0);
-        let eta_factor = -2.0 * (1.0 - nu) * g * c.c22 / (PI * PI * mu_p0);
-        let phi_factor = -3.0 * (a * b).sqrt() * g * c.c23 / (2.0 * PI * mu_p0);
         Self {
-            xi_star: star(xi_factor, xi),
-            eta_star: star(eta_factor, eta),
-            phi_star: star(phi_factor, phi),
+            xi_star: 0.0,
+            eta_star: 0.0,
+            phi_star: 0.0,
             a,
             nu,
             traction_curvature: mu_p0 / a,
-            eta_star_per_eta: eta_factor,
+            eta_star_per_eta: -2.0 * (1.0 - nu) * g * c.c22 / (PI * PI * mu_p0),
+            xi_star_per_xi: -2.0 * (1.0 - nu) * g * c.c11 / (PI * PI * mu_p0),
+            phi_star_per_phi: -3.0 * (a * b).sqrt() * g * c.c23 / (2.0 * PI * mu_p0),
+        }
+        .with_creepage(xi, eta, phi)
+    }
+
+    /// The same patch under creepages `xi`, `eta` [-], `phi` [1/m] (FS1 by multiplication: the
+    /// patch solver builds the patch's scales once and each strip's from them).
+    pub fn with_creepage(&self, xi: f64, eta: f64, phi: f64) -> Self {
+        // Zero creepage stays exactly zero even when the factor is not finite.
+        let star = |factor: f64, k: f64| if k == 0.0 { 0.0 } else { factor * k };
+        Self {
+            xi_star: star(self.xi_star_per_xi, xi),
+            eta_star: star(self.eta_star_per_eta, eta),
+            phi_star: star(self.phi_star_per_phi, phi),
+            ..*self
         }
     }
 }
@@ -407,12 +422,11 @@ pub fn semi_ellipse_midpoint_ratio(n: usize) -> f64 {
     sum * (2.0 / n as f64) / std::f64::consts::FRAC_PI_2
 }
 
-/// Validity of a flexibility triple for the FASTSIM pass: positive, finite, finite reciprocal.
+/// Validity of a flexibility triple for the FASTSIM pass: positive normal and finite (so its
+/// reciprocal is finite too).
 fn usable_flexibilities(flex: [f64; 3]) -> bool {
-    // Non-short-circuit `&`: three values, no branches.
-    flex.iter().fold(true, |ok, &l| {
-        ok & (l > 0.0) & l.is_finite() & (1.0 / l).is_finite()
-    })
+    flex.iter()
+        .all(|l| (f64::MIN_POSITIVE..=f64::MAX).contains(l))
 }
 
 /// Element centres ζ_i ∈ (−1, 1) of a strip of n equal elements ([`normalised_centre`]) and the
@@ -933,9 +947,11 @@ impl StripAccumulator {
     #[inline]
     fn add_power(&mut self, contribution: f64) {
         // NaN only from 0 × ∞ (no traction, absurd slip): contributes nothing.
-        if !contribution.is_nan() {
-            self.power += contribution;
-        }
+        self.power += if contribution.is_nan() {
+            0.0
+        } else {
+            contribution
+        };
     }
 }
 
@@ -1042,6 +1058,8 @@ impl FastripResult {
                 nu: 0.0,
                 traction_curvature: 0.0,
                 eta_star_per_eta: 0.0,
+                xi_star_per_xi: 0.0,
+                phi_star_per_phi: 0.0,
             },
         }
     }

@@ -305,6 +305,9 @@ impl StripFastsim {
         let e = &equivalent.contact;
         let (a_e, b_e, g, nu, mu) = (e.a, e.b, e.shear_modulus, e.nu, e.mu);
         let (coefficients, p0_e) = (&equivalent.coefficients, equivalent.peak_pressure());
+        // FS1's factors once per patch; each strip's starred creepages by multiplication.
+        let patch_scales =
+            FastripScales::new(a_e, b_e, coefficients, g, nu, mu, p0_e, 0.0, 0.0, 0.0);
         // The grid is lent out of `self` for the solve (moving a Vec does not allocate).
         let grid = std::mem::take(&mut self.fastrip_grid);
         let result = self.run(strips, speed, |strip, px_row, py_row, slip_row| {
@@ -312,8 +315,7 @@ impl StripFastsim {
                 return None;
             }
             let k = strip.creepage;
-            let scales =
-                FastripScales::new(a_e, b_e, coefficients, g, nu, mu, p0_e, k.xi, k.eta, k.phi);
+            let scales = patch_scales.with_creepage(k.xi, k.eta, k.phi);
             let strip_input = FastripStrip {
                 y: strip.lever,
                 x_c: strip.x_c,
