@@ -91,8 +91,9 @@
 //!
 //! # Evaluation (what each element costs)
 //!
-//! The equations above, arranged so that an element needs at most one or two square roots and
-//! one division (docs/performance.md has the instruction counts):
+//! The equations above, arranged so that an element costs one square root and one division for
+//! FS3 in the adhesion zone, one of each where the FASTSIM pass slips, and one root for the slip
+//! displacement in the slip zone (docs/performance.md has the instruction counts):
 //!
 //! * **Per patch and strip.** FS1's factors −2(1−ν)G C11/(π²μp0), … are formed once per patch
 //!   ([`FastripScales::with_creepage`] multiplies them by each strip's creepages); FS2, κ, λ
@@ -100,7 +101,7 @@
 //!   are the same for every strip of n elements: the patch solver tabulates them once.
 //! * **Two zones, two loops.** ζ_i increases with i, so the adhesion zone ζ > −1 + 2δ is the
 //!   leading run i ≥ i₀ with i₀ = ⌊nδ + ½⌋ (settled on the tabulated centres); it is marched
-//!   first (FS3: one root for the second square root of FS3, the first is tabulated, and one
+//!   first (FS3: one root, √((1−δ)² − (ζ−δ)²), the other one being tabulated, and one
 //!   division for their difference), then the slip zone behind it, without FS3.
 //! * **FS3's bound check** (choice 2) only where |φ*| > 1: for |φ*| ≤ 1 FS3 provably stays
 //!   within μp, and the check compares squares (no root).
@@ -111,12 +112,12 @@
 //!   it adheres, p/|p| takes one root and one reciprocal. Its slip displacement (choice 6) is
 //!   formed only for elements that slip in both.
 //!
-//! Against the element-by-element evaluation these replace (every element its centre, bound
-//! shape, the full pass with a normalised direction, FS3 with two roots and a rooted bound
-//! check), results differ by rounding only: on 20 000 random strips (creepages over five
-//! decades, spins from 1e−3 to 10 1/m, 1 to 40 elements, own and foreign bound pressures) no
-//! element changed between adhesion and slip, element tractions moved by at most 6e−16 μ pmax
-//! and the strip sums by 1.2e−15 μ pmax x_l (frictional power 5e−14 relative).
+//! These arrangements change results by rounding only against the direct evaluation (every
+//! element its own centre and bound shape, the full pass with a normalised direction, FS3 with
+//! two roots and a rooted bound check): on 20 000 random strips (creepages over five decades,
+//! spins from 1e−3 to 10 1/m, 1 to 40 elements, own and foreign bound pressures) no element
+//! differs between adhesion and slip, element tractions by at most 6e−16 μ pmax and the strip
+//! sums by 1.2e−15 μ pmax x_l (frictional power 5e−14 relative).
 //!
 //! # Measured accuracy (tests)
 //!
