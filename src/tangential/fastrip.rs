@@ -463,7 +463,7 @@ fn usable_flexibilities(flex: [f64; 3]) -> bool {
 /// semi-ellipse √(1 − ζ_i²) there. They are the same for every strip of n elements: the patch
 /// solver (`crate::tangential::strip_fastsim`) tabulates them once ([`StripGrid::new`]),
 /// [`solve_strip`] evaluates them per element ([`grid_element`]).
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct StripGrid {
     /// (ζ_i, √(1 − ζ_i²)), index 0 at the trailing edge.
     elements: Vec<(f64, f64)>,

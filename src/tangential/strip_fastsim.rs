@@ -308,9 +308,7 @@ impl StripFastsim {
         // FS1's factors once per patch; each strip's starred creepages by multiplication.
         let patch_scales =
             FastripScales::new(a_e, b_e, coefficients, g, nu, mu, p0_e, 0.0, 0.0, 0.0);
-        // The grid is lent out of `self` for the solve (moving a Vec does not allocate).
-        let grid = std::mem::take(&mut self.fastrip_grid);
-        let result = self.run(strips, speed, |strip, px_row, py_row, slip_row| {
+        self.run(strips, speed, |strip, grid, px_row, py_row, slip_row| {
             if !(strip.half_length > 0.0 && strip.pmax > 0.0 && strip.width > 0.0) {
                 return None;
             }
@@ -335,7 +333,7 @@ impl StripFastsim {
             };
             let sums = solve_strip_on_grid(
                 &problem,
-                &grid,
+                grid,
                 &mut px_row[..nx],
                 &mut py_row[..nx],
                 &mut slip_row[..nx],
@@ -350,9 +348,7 @@ impl StripFastsim {
                 n_elements: sums.n_elements,
                 n_adhesion: sums.n_adhesion,
             })
-        });
-        self.fastrip_grid = grid;
-        result
+        })
     }
 
     /// Marches the strips of `group` (strip index, march, x step; 2, 4 or [`MAX_GROUP`] of
@@ -384,14 +380,15 @@ impl StripFastsim {
     }
 
     /// The bookkeeping of a solver that solves one strip at a time: lets `solve_one` fill each
-    /// strip's row (every element of it) or return `None` for a strip that carries nothing (its
-    /// row is then cleared) and sums the patch.
+    /// strip's row (every element of it; FaStrip's grid at hand) or return `None` for a strip
+    /// that carries nothing (its row is then cleared) and sums the patch.
     fn run(
         &mut self,
         strips: &[TangentialStrip],
         speed: f64,
         mut solve_one: impl FnMut(
             &TangentialStrip,
+            &StripGrid,
             &mut [f64],
             &mut [f64],
             &mut [bool],
@@ -403,6 +400,7 @@ impl StripFastsim {
             let row = j * nx..(j + 1) * nx;
             match solve_one(
                 strip,
+                &self.fastrip_grid,
                 &mut self.px[row.clone()],
                 &mut self.py[row.clone()],
                 &mut self.slipping[row],
