@@ -64,6 +64,7 @@ use crate::tangential::fastrip::{semi_ellipse_midpoint_ratio, StripGrid};
 use crate::tangential::fastsim::{
     strip_outs, Creepage, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP,
 };
+use std::sync::Arc;
 
 /// Largest element count per strip (the FMU's `nx` range).
 pub const MAX_ELEMENTS: usize = 1000;
@@ -161,7 +162,7 @@ pub struct StripFastsim {
     /// [`semi_ellipse_midpoint_ratio`] of `nx` (FaStrip's bound is divided by it).
     midpoint_ratio: f64,
     /// FaStrip's element centres and semi-ellipse on a strip of `nx` elements.
-    fastrip_grid: StripGrid,
+    fastrip_grid: Arc<StripGrid>,
 }
 
 /// The bound's shape √(1 − u_i²) at the element centres of a strip of `nx` elements, scaled so
@@ -197,7 +198,7 @@ impl StripFastsim {
             n_strips: 0,
             shape: bound_shape(nx, midpoint_ratio),
             midpoint_ratio,
-            fastrip_grid: StripGrid::new(nx),
+            fastrip_grid: Arc::new(StripGrid::new(nx)),
         })
     }
 
@@ -308,7 +309,9 @@ impl StripFastsim {
         // FS1's factors once per patch; each strip's starred creepages by multiplication.
         let patch_scales =
             FastripScales::new(a_e, b_e, coefficients, g, nu, mu, p0_e, 0.0, 0.0, 0.0);
-        self.run(strips, speed, |strip, grid, px_row, py_row, slip_row| {
+        // A shared handle on the grid (no allocation), so that the solve can borrow `self`.
+        let grid = Arc::clone(&self.fastrip_grid);
+        self.run(strips, speed, |strip, px_row, py_row, slip_row| {
             if !(strip.half_length > 0.0 && strip.pmax > 0.0 && strip.width > 0.0) {
                 return None;
             }
@@ -333,7 +336,7 @@ impl StripFastsim {
             };
             let sums = solve_strip_on_grid(
                 &problem,
-                grid,
+                &grid,
                 &mut px_row[..nx],
                 &mut py_row[..nx],
                 &mut slip_row[..nx],
@@ -380,15 +383,14 @@ impl StripFastsim {
     }
 
     /// The bookkeeping of a solver that solves one strip at a time: lets `solve_one` fill each
-    /// strip's row (every element of it; FaStrip's grid at hand) or return `None` for a strip
-    /// that carries nothing (its row is then cleared) and sums the patch.
+    /// strip's row (every element of it) or return `None` for a strip that carries nothing (its
+    /// row is then cleared) and sums the patch.
     fn run(
         &mut self,
         strips: &[TangentialStrip],
         speed: f64,
         mut solve_one: impl FnMut(
             &TangentialStrip,
-            &StripGrid,
             &mut [f64],
             &mut [f64],
             &mut [bool],
@@ -400,7 +402,6 @@ impl StripFastsim {
             let row = j * nx..(j + 1) * nx;
             match solve_one(
                 strip,
-                &self.fastrip_grid,
                 &mut self.px[row.clone()],
                 &mut self.py[row.clone()],
                 &mut self.slipping[row],
