@@ -1041,15 +1041,18 @@ impl WheelOnRail {
             } else {
                 0.5 * (lo + hi)
             };
-            let moved = (next - l).abs();
+            let step = next - l;
             l = next;
+            if step.abs() <= LOWEST_POINT_TOLERANCE {
+                // Converged: the profile at `l` from its expansion at the last point (the step's
+                // square is far below rounding), without evaluating the spline again.
+                at = (z + dz * step, dz + d2z * step, d2z);
+                break;
+            }
             if !piece.contains(l - offset) {
                 piece = self.wheel.piece_at(l - offset);
             }
             at = piece.eval(l - offset);
-            if moved <= LOWEST_POINT_TOLERANCE {
-                break;
-            }
         }
         let (z_w, dz_w, _) = at;
         let r = r0 + z_w;

@@ -15,8 +15,8 @@ use crate::tangential::fastsim::Creepage;
 use crate::tangential::patch::TangentialModel;
 use crate::wheelset::validity::validity;
 use crate::wheelset::{
-    Creepages, SideResult, Slot, Vertical, WarmStart, Wheelset, WheelsetError, WheelsetInput,
-    WheelsetResult, WheelsetSettings, MAX_PATCHES, V_MIN,
+    Creepages, SideResult, Slot, Trend, Vertical, WarmStart, Wheelset, WheelsetError,
+    WheelsetInput, WheelsetResult, WheelsetSettings, MAX_PATCHES, V_MIN,
 };
 use std::path::{Path, PathBuf};
 
@@ -558,8 +558,8 @@ impl Model for WheelRailContact {
     /// The solver's history (the load iteration's warm starts, `wheelset::WarmStart`, and the
     /// patches' output slots, `wheelset::Slot`): a version byte, then per wheel (left, right) a
     /// flag byte (0 none, else 1 + the steps of history) and the approach [m], creep component
-    /// [N], their changes over the last step, the changes' bends and the strip ratio as
-    /// little-endian f64, then per wheel and output slot a presence
+    /// [N] and load-balance slope [N/m^1.5], each with its change over the last step and that
+    /// change's bend, and the strip ratio as little-endian f64, then per wheel and output slot a presence
     /// byte, the patch's `yRail` [m] as little-endian f64 and its index among the wheel's
     /// patches. Nothing before initialization.
     fn save_state(&self, out: &mut Vec<u8>) {
@@ -591,11 +591,12 @@ fn not_initialized() -> ModelError {
     ModelError::Error("model used before initialization".into())
 }
 
-/// Version of the solver-history layout in FMU states (6: warm start with its changes and their
-/// bends, one strip ratio, and the output slots).
-const HISTORY_VERSION: u8 = 6;
+/// Version of the solver-history layout in FMU states (7: warm start with the approach, creep
+/// component and load-balance slope, each with its change and bend, the strip ratio, and the
+/// output slots).
+const HISTORY_VERSION: u8 = 7;
 /// Values of one wheel's warm start in the layout ([`warm_fields`]).
-const WARM_FIELDS: usize = 7;
+const WARM_FIELDS: usize = 10;
 /// Bytes of one wheel's warm start: flag (0 none, else 1 + [`WarmStart::history`]), then its
 /// values as little-endian f64.
 const WARM_SIDE_BYTES: usize = 1 + WARM_FIELDS * 8;
@@ -604,16 +605,20 @@ const SLOT_BYTES: usize = 1 + 8 + 1;
 /// Bytes of the whole history.
 const HISTORY_BYTES: usize = 1 + 2 * WARM_SIDE_BYTES + 2 * MAX_PATCHES * SLOT_BYTES;
 
-/// The warm start's values in the state layout's order: approach, creep component, their
-/// changes, the changes' bends, the strip ratio.
+/// The warm start's values in the state layout's order: approach, creep component and slope,
+/// each as value, change, bend; then the strip ratio.
 fn warm_fields(w: &WarmStart) -> [f64; WARM_FIELDS] {
+    let [a, c, s] = [w.approach, w.creep, w.slope];
     [
-        w.approach,
-        w.creep,
-        w.approach_step,
-        w.creep_step,
-        w.approach_bend,
-        w.creep_bend,
+        a.value,
+        a.step,
+        a.bend,
+        c.value,
+        c.step,
+        c.bend,
+        s.value,
+        s.step,
+        s.bend,
         w.strip_ratio,
     ]
 }
@@ -628,12 +633,9 @@ fn write_history(
     for side in warm {
         out.push(side.map_or(0, |w| 1 + w.history.min(2)));
         let w = side.unwrap_or(WarmStart {
-            approach: 0.0,
-            creep: 0.0,
-            approach_step: 0.0,
-            creep_step: 0.0,
-            approach_bend: 0.0,
-            creep_bend: 0.0,
+            approach: Trend::new(0.0),
+            creep: Trend::new(0.0),
+            slope: Trend::new(0.0),
             history: 0,
             strip_ratio: 1.0,
         });
@@ -677,32 +679,33 @@ fn parse_history(bytes: &[u8]) -> Result<History, String> {
     {
         let values: [f64; WARM_FIELDS] = std::array::from_fn(|k| f64_at(chunk, 1 + 8 * k));
         // The order of `warm_fields`.
-        let [approach, creep, approach_step, creep_step, approach_bend, creep_bend, strip_ratio] =
-            values;
-        let finite = [creep, approach_step, creep_step, approach_bend, creep_bend]
-            .iter()
-            .all(|v| v.is_finite());
+        let trend = |k: usize| Trend {
+            value: values[k],
+            step: values[k + 1],
+            bend: values[k + 2],
+        };
+        let (approach, creep, slope) = (trend(0), trend(3), trend(6));
+        let strip_ratio = values[9];
         let positive = |v: f64| v > 0.0 && v.is_finite();
+        let valid = positive(approach.value)
+            && approach.is_finite()
+            && creep.is_finite()
+            && slope.is_finite()
+            && slope.value >= 0.0
+            && positive(strip_ratio);
         *side = match chunk[0] {
             0 => None,
-            flag @ 1..=3 if positive(approach) && finite && positive(strip_ratio) => {
-                Some(WarmStart {
-                    approach,
-                    creep,
-                    approach_step,
-                    creep_step,
-                    approach_bend,
-                    creep_bend,
-                    history: flag - 1,
-                    strip_ratio,
-                })
-            }
+            flag @ 1..=3 if valid => Some(WarmStart {
+                approach,
+                creep,
+                slope,
+                history: flag - 1,
+                strip_ratio,
+            }),
             flag => {
                 return Err(format!(
-                    "FMU state: invalid warm start (flag {flag}, approach {approach} m, creep \
-                     component {creep} N, their changes {approach_step} m and {creep_step} N, \
-                     their bends {approach_bend} m and {creep_bend} N, strip ratio \
-                     {strip_ratio})"
+                    "FMU state: invalid warm start (flag {flag}, approach {approach:?} m, creep \
+                     component {creep:?} N, slope {slope:?} N/m^1.5, strip ratio {strip_ratio})"
                 ))
             }
         };
@@ -790,12 +793,21 @@ mod tests {
         let warm = [
             None,
             Some(WarmStart {
-                approach: 8.1e-5,
-                creep: -123.25,
-                approach_step: -2.5e-8,
-                creep_step: 0.75,
-                approach_bend: 1.5e-10,
-                creep_bend: -0.125,
+                approach: Trend {
+                    value: 8.1e-5,
+                    step: -2.5e-8,
+                    bend: 1.5e-10,
+                },
+                creep: Trend {
+                    value: -123.25,
+                    step: 0.75,
+                    bend: -0.125,
+                },
+                slope: Trend {
+                    value: 3.5e15,
+                    step: 2.0e12,
+                    bend: -1.0e9,
+                },
                 history: 2,
                 strip_ratio: 1.25,
             }),
@@ -820,8 +832,8 @@ mod tests {
         let mut v = bytes.clone();
         v[1] = 7;
         assert!(parse_history(&v).is_err());
-        // A NaN bend (the right wheel's approach bend, field 4 of its warm start).
-        let bend = 1 + WARM_SIDE_BYTES + 1 + 8 * 4;
+        // A NaN bend (the right wheel's approach bend, field 2 of its warm start).
+        let bend = 1 + WARM_SIDE_BYTES + 1 + 8 * 2;
         let mut v = bytes.clone();
         v[bend..bend + 8].copy_from_slice(&f64::NAN.to_le_bytes());
         assert!(parse_history(&v).is_err());
@@ -843,15 +855,22 @@ mod tests {
             (1e-5, 0.0, 0.0, -1.0),
         ] {
             let w = WarmStart {
-                approach,
-                creep,
-                approach_step: 0.0,
-                creep_step,
-                approach_bend: 0.0,
-                creep_bend: 0.0,
+                approach: Trend::new(approach),
+                creep: Trend {
+                    step: creep_step,
+                    ..Trend::new(creep)
+                },
+                slope: Trend::new(0.0),
                 history: 1,
                 strip_ratio,
             };
+            let v = bytes_of([Some(w), None], slots);
+            assert!(parse_history(&v).is_err(), "{w:?}");
+        }
+        // A negative or non-finite slope.
+        for slope in [-1.0, f64::NAN, f64::INFINITY] {
+            let mut w = warm[1].expect("the right wheel's warm start");
+            w.slope.value = slope;
             let v = bytes_of([Some(w), None], slots);
             assert!(parse_history(&v).is_err(), "{w:?}");
         }

@@ -89,6 +89,36 @@
 //!    power; elements where FaStrip slips but FASTSIM adheres contribute nothing (an
 //!    approximation). With unusable flexibilities S = w Δx, the rigid slip over the element.
 //!
+//! # Evaluation (what each element costs)
+//!
+//! The equations above, arranged so that an element costs one square root and one division for
+//! FS3 in the adhesion zone, one of each where the FASTSIM pass slips, and one root for the slip
+//! displacement in the slip zone (docs/performance.md has the instruction counts):
+//!
+//! * **Per patch and strip.** FS1's factors −2(1−ν)G C11/(π²μp0), … are formed once per patch
+//!   ([`FastripScales::with_creepage`] multiplies them by each strip's creepages); FS2, κ, λ
+//!   and the FASTSIM pass's increments once per strip. The element centres ζ_i and √(1 − ζ_i²)
+//!   are the same for every strip of n elements: the patch solver tabulates them once.
+//! * **Two zones, two loops.** ζ_i increases with i, so the adhesion zone ζ > −1 + 2δ is the
+//!   leading run i ≥ i₀ with i₀ = ⌊nδ + ½⌋ (settled on the tabulated centres); it is marched
+//!   first (FS3: one root, √((1−δ)² − (ζ−δ)²), the other one being tabulated, and one
+//!   division for their difference), then the slip zone behind it, without FS3.
+//! * **FS3's bound check** (choice 2) only where |φ*| > 1: for |φ*| ≤ 1 FS3 provably stays
+//!   within μp, and the check compares squares (no root).
+//! * **The FASTSIM pass** advances every element (its state carries along the strip) with the
+//!   squared trial against the squared bound: a root and a division only where it slips. Its
+//!   direction is needed only in FaStrip's slip zone: where the pass itself slipped, its
+//!   traction B·p already has |B·p| = μp (up to rounding) and is the slip-zone traction; where
+//!   it adheres, p/|p| takes one root and one reciprocal. Its slip displacement (choice 6) is
+//!   formed only for elements that slip in both.
+//!
+//! These arrangements change results by rounding only against the direct evaluation (every
+//! element its own centre and bound shape, the full pass with a normalised direction, FS3 with
+//! two roots and a rooted bound check): on 20 000 random strips (creepages over five decades,
+//! spins from 1e−3 to 10 1/m, 1 to 40 elements, own and foreign bound pressures) no element
+//! differs between adhesion and slip, element tractions by at most 6e−16 μ pmax and the strip
+//! sums by 1.2e−15 μ pmax x_l (frictional power 5e−14 relative).
+//!
 //! # Measured accuracy (tests)
 //!
 //! Oracle (docs/theory.md §4.6, CONTACT fastsim.ref_out cases 4 and 7, a = 8, b = 4 mm, N = 82 kN,
@@ -141,6 +171,10 @@ pub struct FastripScales {
     /// ∂η*/∂η = −2(1−ν)G C22/(π²μp0) [-], for the lateral creepage η + φx_c at the centre of a
     /// strip centred at x_c ≠ 0 (module header, choice 4).
     pub eta_star_per_eta: f64,
+    /// ∂ξ*/∂ξ = −2(1−ν)G C11/(π²μp0) [-].
+    pub xi_star_per_xi: f64,
+    /// ∂φ*/∂φ = −3√(ab) G C23/(2πμp0) [m].
+    pub phi_star_per_phi: f64,
 }
 
 impl FastripScales {
@@ -164,19 +198,30 @@ impl FastripScales {
         phi: f64,
     ) -> Self {
         let mu_p0 = mu * p0;
-        // Zero creepage stays exactly zero even when the factor is not finite.
-        let star = |factor: f64, k: f64| if k == 0.0 { 0.0 } else { factor * k };
-        let xi_factor = -2.0 * (1.0 - nu) * g * c.c11 / (PI * PI * mu_p0);
-        let eta_factor = -2.0 * (1.0 - nu) * g * c.c22 / (PI * PI * mu_p0);
-        let phi_factor = -3.0 * (a * b).sqrt() * g * c.c23 / (2.0 * PI * mu_p0);
         Self {
-            xi_star: star(xi_factor, xi),
-            eta_star: star(eta_factor, eta),
-            phi_star: star(phi_factor, phi),
+            xi_star: 0.0,
+            eta_star: 0.0,
+            phi_star: 0.0,
             a,
             nu,
             traction_curvature: mu_p0 / a,
-            eta_star_per_eta: eta_factor,
+            eta_star_per_eta: -2.0 * (1.0 - nu) * g * c.c22 / (PI * PI * mu_p0),
+            xi_star_per_xi: -2.0 * (1.0 - nu) * g * c.c11 / (PI * PI * mu_p0),
+            phi_star_per_phi: -3.0 * (a * b).sqrt() * g * c.c23 / (2.0 * PI * mu_p0),
+        }
+        .with_creepage(xi, eta, phi)
+    }
+
+    /// The same patch under creepages `xi`, `eta` [-], `phi` [1/m] (FS1 by multiplication: the
+    /// patch solver builds the patch's scales once and each strip's from them).
+    pub fn with_creepage(&self, xi: f64, eta: f64, phi: f64) -> Self {
+        // Zero creepage stays exactly zero even when the factor is not finite.
+        let star = |factor: f64, k: f64| if k == 0.0 { 0.0 } else { factor * k };
+        Self {
+            xi_star: star(self.xi_star_per_xi, xi),
+            eta_star: star(self.eta_star_per_eta, eta),
+            phi_star: star(self.phi_star_per_phi, phi),
+            ..*self
         }
     }
 }
@@ -403,19 +448,45 @@ fn normalised_centre(i: usize, n: usize) -> f64 {
 /// [−1, 1], relative to its integral π/2 [-]: +0.97 % at 10, +0.34 % at 20, +0.12 % at 40
 /// elements, → 1. Sampled pressures divided by it sum to the strip's load exactly.
 pub fn semi_ellipse_midpoint_ratio(n: usize) -> f64 {
-    let sum: f64 = (0..n)
-        .map(|i| {
-            let u = normalised_centre(i, n);
-            ((1.0 - u) * (1.0 + u)).max(0.0).sqrt()
-        })
-        .sum();
+    let sum: f64 = (0..n).map(|i| grid_element(i, n).1).sum();
     sum * (2.0 / n as f64) / std::f64::consts::FRAC_PI_2
 }
 
-/// Validity of a flexibility triple for the FASTSIM pass: positive, finite, finite reciprocal.
+/// Validity of a flexibility triple for the FASTSIM pass: positive normal and finite (so its
+/// reciprocal is finite too).
 fn usable_flexibilities(flex: [f64; 3]) -> bool {
     flex.iter()
-        .all(|&l| l > 0.0 && l.is_finite() && (1.0 / l).is_finite())
+        .all(|l| (f64::MIN_POSITIVE..=f64::MAX).contains(l))
+}
+
+/// Element centres ζ_i ∈ (−1, 1) of a strip of n equal elements ([`normalised_centre`]) and the
+/// semi-ellipse √(1 − ζ_i²) there. They are the same for every strip of n elements: the patch
+/// solver (`crate::tangential::strip_fastsim`) tabulates them once ([`StripGrid::new`]),
+/// [`solve_strip`] evaluates them per element ([`grid_element`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct StripGrid {
+    /// (ζ_i, √(1 − ζ_i²)), index 0 at the trailing edge.
+    elements: Vec<(f64, f64)>,
+}
+
+impl StripGrid {
+    /// The grid of `n` elements.
+    pub(crate) fn new(n: usize) -> Self {
+        Self {
+            elements: (0..n).map(|i| grid_element(i, n)).collect(),
+        }
+    }
+
+    /// Number of elements.
+    pub(crate) fn len(&self) -> usize {
+        self.elements.len()
+    }
+}
+
+/// Element `i` of `n`: its centre ζ ∈ (−1, 1) and √(1 − ζ²).
+fn grid_element(i: usize, n: usize) -> (f64, f64) {
+    let zeta = normalised_centre(i, n);
+    (zeta, ((1.0 - zeta) * (1.0 + zeta)).max(0.0).sqrt())
 }
 
 /// Solves one strip with nx equal elements from its leading edge x_c + x_l to its trailing edge
@@ -486,6 +557,273 @@ pub(crate) fn solve_strip_with_pressure(
     slipping: &mut [bool],
 ) -> FastripStripSums {
     let n = qx.len();
+    let problem = StripProblem {
+        strip,
+        pressure,
+        scales,
+        mu,
+        flex,
+        creepage,
+    };
+    let out = StripRow { qx, qy, slipping };
+    solve_elements(&problem, |i| grid_element(i, n), out)
+}
+
+/// [`solve_strip_with_pressure`] of `problem` on a tabulated grid (its length must be the
+/// slices'): the patch solver's entry, the same results without a per-element centre and root.
+pub(crate) fn solve_strip_on_grid(
+    problem: &StripProblem<'_>,
+    grid: &StripGrid,
+    qx: &mut [f64],
+    qy: &mut [f64],
+    slipping: &mut [bool],
+) -> FastripStripSums {
+    let n = grid.len();
+    assert!(qx.len() == n && qy.len() == n && slipping.len() == n);
+    let out = StripRow { qx, qy, slipping };
+    let elements = &grid.elements[..n];
+    solve_elements(problem, |i| elements[i], out)
+}
+
+/// The inputs of one strip solve (the arguments of [`solve_strip_with_pressure`]).
+pub(crate) struct StripProblem<'a> {
+    pub(crate) strip: &'a FastripStrip,
+    /// The bound's pressure (module header, choice 5).
+    pub(crate) pressure: StripPressure,
+    pub(crate) scales: &'a FastripScales,
+    /// Friction of the strip.
+    pub(crate) mu: f64,
+    /// [L1, L2, L3] of the FASTSIM direction pass [m/Pa].
+    pub(crate) flex: [f64; 3],
+    /// (ξ, η, φ) of the strip [-, -, 1/m].
+    pub(crate) creepage: [f64; 3],
+}
+
+/// The element outputs of one strip.
+struct StripRow<'a> {
+    qx: &'a mut [f64],
+    qy: &'a mut [f64],
+    slipping: &'a mut [bool],
+}
+
+/// FS3 in the adhesion zone of one strip, per element, with the strip's constants hoisted.
+struct AdhesionZone {
+    /// Trailing end of the adhesion zone, ζ = −1 + 2δ.
+    start: f64,
+    /// 2δ.
+    two_delta: f64,
+    /// μ_s pmax [Pa] and μ_s pmax κ [Pa].
+    mu_pmax: f64,
+    mu_pmax_kappa: f64,
+    lambda: f64,
+    /// φ* of the strip (λ − λ').
+    spin: f64,
+    /// Whether FS3 can exceed the bound (|φ*| > 1, module header choice 2): for |φ*| ≤ 1 it
+    /// provably does not, and the check is skipped.
+    check_bound: bool,
+}
+
+impl AdhesionZone {
+    /// The zone of `theory` under the traction amplitude μ_s pmax (`mu_pmax`); None without one.
+    fn of(theory: StripTheory, mu_pmax: f64) -> Option<Self> {
+        match theory {
+            StripTheory::Partial {
+                delta,
+                kappa,
+                lambda,
+                spin,
+            } => Some(Self {
+                start: -1.0 + 2.0 * delta,
+                two_delta: 2.0 * delta,
+                mu_pmax,
+                mu_pmax_kappa: mu_pmax * kappa,
+                lambda,
+                spin,
+                check_bound: spin.abs() > 1.0,
+            }),
+            StripTheory::FullSliding => None,
+        }
+    }
+
+    /// The first of `n` elements (centres `centre(i)`, increasing) inside the zone ζ > −1 + 2δ;
+    /// `n` if none. Estimated from ζ_i = −1 + (2i + 1)/n, then settled on the centres.
+    fn first_element(&self, n: usize, centre: impl Fn(usize) -> f64) -> usize {
+        // i > nδ − 1/2; the float → integer cast saturates (δ ∈ [0, 1) here).
+        let mut i = ((n as f64 * (self.two_delta / 2.0) + 0.5).max(0.0) as usize).min(n);
+        while i > 0 && centre(i - 1) > self.start {
+            i -= 1;
+        }
+        while i < n && centre(i) <= self.start {
+            i += 1;
+        }
+        i
+    }
+
+    /// FS3's traction (q_x, q_y) [Pa] at the element centre ζ (`root` = √(1 − ζ²)) if the
+    /// element lies in the adhesion zone and the traction within μ_s p (choice 2).
+    #[inline]
+    fn traction(&self, zeta: f64, root: f64) -> Option<(f64, f64)> {
+        if zeta <= self.start {
+            return None;
+        }
+        let one_minus = 1.0 - zeta;
+        let s1 = root;
+        let s2 = (one_minus * (1.0 + zeta - self.two_delta)).max(0.0).sqrt();
+        // √(1−ζ²) − √((1−δ)² − (ζ−δ)²) without cancellation (exact 0 at δ = 0).
+        let diff = if s1 + s2 > 0.0 {
+            self.two_delta * one_minus / (s1 + s2)
+        } else {
+            0.0
+        };
+        let tx = self.mu_pmax_kappa * diff;
+        let ty = self.mu_pmax * (self.lambda * diff + self.spin * s2);
+        if self.check_bound {
+            let bound = self.mu_pmax * s1 * (1.0 + BOUND_TOLERANCE);
+            if tx * tx + ty * ty > bound * bound {
+                return None;
+            }
+        }
+        Some((tx, ty))
+    }
+}
+
+/// The FASTSIM direction pass over one strip (F3 in units of B = μ × the bound's peak
+/// pressure), marched from the leading edge.
+struct DirectionPass {
+    /// Traction of the last element [B].
+    px: f64,
+    py: f64,
+    /// Rigid-slip increments per element [B]: along x, along y at x = x_c and per unit x − x_c.
+    step_x: f64,
+    step_y_at_centre: f64,
+    step_y_per_x: f64,
+    /// L1, L2 [m/Pa], B [Pa] and the true slip over the marched one (> 1 only when the overflow
+    /// guard scaled the creepages down), for the slip displacement.
+    l1: f64,
+    l2: f64,
+    bound_peak: f64,
+    slip_factor: f64,
+}
+
+impl DirectionPass {
+    /// A pass that stays at zero (never slips): stands in where the flexibilities are unusable.
+    const IDLE: Self = Self {
+        px: 0.0,
+        py: 0.0,
+        step_x: 0.0,
+        step_y_at_centre: 0.0,
+        step_y_per_x: 0.0,
+        l1: 0.0,
+        l2: 0.0,
+        bound_peak: 0.0,
+        slip_factor: 0.0,
+    };
+
+    /// Advances to the element at x − x_c = `xr` with bound shape `shape` (bound B·shape):
+    /// the adhesion trial if the element slips (the traction is then scaled onto the bound),
+    /// None if it adheres.
+    #[inline(always)]
+    fn advance(&mut self, xr: f64, shape: f64) -> Option<(f64, f64)> {
+        let trial_x = self.px - self.step_x;
+        let trial_y = self.py - (self.step_y_at_centre + self.step_y_per_x * xr);
+        let trial_sq = trial_x * trial_x + trial_y * trial_y;
+        if trial_sq > shape * shape {
+            let f = shape / trial_sq.sqrt();
+            self.px = trial_x * f;
+            self.py = trial_y * f;
+            Some((trial_x, trial_y))
+        } else {
+            self.px = trial_x;
+            self.py = trial_y;
+            None
+        }
+    }
+
+    /// Slip displacement [m] of an element that slipped from `trial` (choice 6).
+    #[inline]
+    fn slip(&self, trial: (f64, f64)) -> f64 {
+        norm(self.l1 * (self.px - trial.0), self.l2 * (self.py - trial.1))
+            * self.bound_peak
+            * self.slip_factor
+    }
+
+    /// Unit vector along the pass's traction ((0, 0) if it is zero).
+    #[inline]
+    fn direction(&self) -> (f64, f64) {
+        let sq = self.px * self.px + self.py * self.py;
+        if sq >= f64::MIN_POSITIVE {
+            // Squares far inside the f64 range: one root and one reciprocal.
+            let r = 1.0 / sq.sqrt();
+            (self.px * r, self.py * r)
+        } else {
+            unit_direction(self.px, self.py)
+        }
+    }
+}
+
+/// The pass of `problem` with `dx` per element, None where the flexibilities or the bound are
+/// unusable (the rigid-slip direction is used instead). The overflow guard scales the
+/// creepages down when the increment per element exceeds the peak bound by more than
+/// [`MAX_OVERDRIVE`].
+fn direction_pass(problem: &StripProblem<'_>, dx: f64) -> Option<DirectionPass> {
+    let bound_peak = problem.mu * problem.pressure.peak;
+    if !(usable_flexibilities(problem.flex) && bound_peak > 0.0) {
+        return None;
+    }
+    let [l1, l2, l3] = problem.flex;
+    let [xi, eta, phi] = problem.creepage;
+    let FastripStrip { y, x_c, .. } = *problem.strip;
+    let spin_offset = SPIN_OFFSET_FRACTION * dx;
+    // Unit creepage (mixed units are fine for a normaliser) and the overflow guard.
+    let magnitude = xi.abs().max(eta.abs()).max(phi.abs());
+    // True slip / marched slip: > 1 only when the overflow guard scaled the creepages down (in
+    // that fully sliding regime the slip is proportional to the creepage).
+    let mut slip_factor = 1.0;
+    let mut pass_creepage = [0.0; 3];
+    if magnitude > 0.0 {
+        let unit = [xi / magnitude, eta / magnitude, phi / magnitude];
+        let [u_xi, u_eta, u_phi] = unit;
+        let reach = x_c.abs() + problem.strip.half_length + dx;
+        let unit_overdrive = (u_xi.abs() / l1
+            + u_phi.abs() * y.abs() / l3
+            + u_eta.abs() / l2
+            + u_phi.abs() * reach / l3)
+            * dx
+            / bound_peak;
+        if !unit_overdrive.is_finite() {
+            return None;
+        }
+        let scale = if unit_overdrive > 0.0 && magnitude > MAX_OVERDRIVE / unit_overdrive {
+            MAX_OVERDRIVE / unit_overdrive
+        } else {
+            magnitude
+        };
+        slip_factor = magnitude / scale;
+        pass_creepage = unit.map(|u| u * scale);
+    }
+    let [c_xi, c_eta, c_phi] = pass_creepage;
+    Some(DirectionPass {
+        px: 0.0,
+        py: 0.0,
+        step_x: (c_xi / l1 - c_phi * y / l3) * dx / bound_peak,
+        step_y_at_centre: (c_eta / l2 + c_phi * (x_c + spin_offset) / l3) * dx / bound_peak,
+        step_y_per_x: c_phi / l3 * dx / bound_peak,
+        l1,
+        l2,
+        bound_peak,
+        slip_factor,
+    })
+}
+
+/// Solves `problem` on the elements given by `element` (i ↦ (ζ_i, √(1 − ζ_i²)), i < the
+/// output's length), writing every element of `out`.
+fn solve_elements(
+    problem: &StripProblem<'_>,
+    element: impl Fn(usize) -> (f64, f64),
+    out: StripRow<'_>,
+) -> FastripStripSums {
+    let StripRow { qx, qy, slipping } = out;
+    let n = qx.len();
     let mut sums = FastripStripSums {
         n_elements: n,
         ..FastripStripSums::default()
@@ -493,13 +831,14 @@ pub(crate) fn solve_strip_with_pressure(
     if n == 0 {
         return sums;
     }
-    let [xi, eta, phi] = creepage;
+    let (pressure, mu) = (problem.pressure, problem.mu);
+    let [xi, eta, phi] = problem.creepage;
     let FastripStrip {
         y,
         x_c,
         half_length: x_l,
         pmax,
-    } = *strip;
+    } = *problem.strip;
     let dx = 2.0 * x_l / n as f64;
     let mu_pmax = mu * pmax;
     let loaded = [y, x_c, x_l, pmax, mu, xi, eta, phi]
@@ -519,7 +858,7 @@ pub(crate) fn solve_strip_with_pressure(
     if !loaded {
         // No load: no traction; an element slips where its rigid slip is not zero.
         for i in 0..n {
-            let x = x_c + x_l * normalised_centre(i, n);
+            let x = x_c + x_l * element(i).0;
             let wx = xi - phi * y;
             let wy = eta + phi * (x + spin_offset);
             let slip = wx != 0.0 || wy != 0.0;
@@ -533,142 +872,174 @@ pub(crate) fn solve_strip_with_pressure(
 
     // Strip-theory coefficients (FS2/FS3) under the strip's own traction curvature μ pmax/x_l;
     // ρ = (μ p0/a)/(μ pmax/x_l) (choice 4), computed without forming μ pmax/x_l.
-    let rho = scales.traction_curvature * (x_l / mu_pmax);
-    let theory = strip_theory(scales, rho, y, x_c, x_l, phi);
-
-    // FASTSIM direction pass, in units of B = μ × peak bound pressure.
-    let bound_peak = mu * pressure.peak;
-    let fastsim_ok = usable_flexibilities(flex) && bound_peak > 0.0;
-    let [l1, l2, l3] = flex;
-    // Unit creepage (mixed units are fine for a normaliser) and the overflow guard.
-    let magnitude = xi.abs().max(eta.abs()).max(phi.abs());
-    let unit = if magnitude > 0.0 {
-        [xi / magnitude, eta / magnitude, phi / magnitude]
-    } else {
-        [0.0; 3]
+    let rho = problem.scales.traction_curvature * (x_l / mu_pmax);
+    let theory = strip_theory(problem.scales, rho, y, x_c, x_l, phi);
+    let adhesion_zone = AdhesionZone::of(theory, mu_pmax);
+    let slip_zone = SlipZone {
+        bound_peak: mu * pressure.peak,
+        rigid_slip_x: xi - phi * y,
+        eta,
+        phi,
+        x_c,
+        spin_offset,
+        dx,
     };
-    let mut pass_creepage = [0.0; 3];
-    // True slip / marched slip: > 1 only when the overflow guard scaled the creepages down (in
-    // that fully sliding regime the slip is proportional to the creepage).
-    let mut slip_factor = 1.0;
-    let mut use_fastsim = fastsim_ok;
-    if fastsim_ok && magnitude > 0.0 {
-        let [u_xi, u_eta, u_phi] = unit;
-        let reach = x_c.abs() + x_l + dx;
-        let unit_overdrive = (u_xi.abs() / l1
-            + u_phi.abs() * y.abs() / l3
-            + u_eta.abs() / l2
-            + u_phi.abs() * reach / l3)
-            * dx
-            / bound_peak;
-        if unit_overdrive.is_finite() {
-            let scale = if unit_overdrive > 0.0 && magnitude > MAX_OVERDRIVE / unit_overdrive {
-                MAX_OVERDRIVE / unit_overdrive
-            } else {
-                magnitude
-            };
-            slip_factor = magnitude / scale;
-            pass_creepage = unit.map(|u| u * scale);
+    let (mut pass, rigid) = match direction_pass(problem, dx) {
+        Some(pass) => (pass, false),
+        None => (DirectionPass::IDLE, true),
+    };
+    // The bound's shape is the strip's own √(1 − ζ²) unless its pressure has another length.
+    let own_shape = pressure.half_length == x_l;
+    let shape_at = |zeta: f64, root: f64| {
+        if own_shape {
+            root
         } else {
-            use_fastsim = false;
+            pressure.shape(x_l * zeta)
         }
-    }
-    let [c_xi, c_eta, c_phi] = pass_creepage;
-    let step_x = (c_xi / l1 - c_phi * y / l3) * dx / bound_peak;
-    let step_y_at_centre = (c_eta / l2 + c_phi * (x_c + spin_offset) / l3) * dx / bound_peak;
-    let step_y_per_x = c_phi / l3 * dx / bound_peak;
-
-    let mut fs_x = 0.0_f64;
-    let mut fs_y = 0.0_f64;
-    let mut max_sq = 0.0_f64;
-    let mut power = 0.0_f64;
-    for i in (0..n).rev() {
-        let zeta = normalised_centre(i, n);
+    };
+    // Elements i ≥ `first_adhesion` lie in the adhesion zone ζ_i > −1 + 2δ (ζ_i increases
+    // with i): marched first, from the leading edge, then the slip zone behind it.
+    let first_adhesion = adhesion_zone
+        .as_ref()
+        .map_or(n, |z| z.first_element(n, |i| element(i).0));
+    let first_adhesion = first_adhesion.min(n);
+    let (qx, qy, slipping) = (&mut qx[..n], &mut qy[..n], &mut slipping[..n]);
+    let mut acc = StripAccumulator::default();
+    for i in (first_adhesion..n).rev() {
+        let (zeta, root) = element(i);
+        let shape = shape_at(zeta, root);
         let xr = x_l * zeta;
-        let x = x_c + xr;
-        let shape = pressure.shape(xr);
-        let mu_p = bound_peak * shape;
-
-        // FASTSIM (F3), normalised by B: adhesion trial, scaled back onto the bound if above.
-        // `slip` is the pass's slip displacement of the element [m] (choice 6).
-        let (direction, fastsim_slip) = if use_fastsim {
-            let trial_x = fs_x - step_x;
-            let trial_y = fs_y - (step_y_at_centre + step_y_per_x * xr);
-            let trial = norm(trial_x, trial_y);
-            let slip = if trial > shape {
-                let f = shape / trial;
-                fs_x = trial_x * f;
-                fs_y = trial_y * f;
-                norm(l1 * (fs_x - trial_x), l2 * (fs_y - trial_y)) * bound_peak * slip_factor
-            } else {
-                fs_x = trial_x;
-                fs_y = trial_y;
-                0.0
-            };
-            (unit_direction(fs_x, fs_y), slip)
-        } else {
-            // Large-creepage limit with equal flexibilities: against the rigid slip, and the
-            // slip is the rigid slip over the element.
-            let [u_xi, u_eta, u_phi] = unit;
-            let wx = xi - phi * y;
-            let wy = eta + phi * (x + spin_offset);
-            (
-                unit_direction(-(u_xi - u_phi * y), -(u_eta + u_phi * (x + spin_offset))),
-                wx.hypot(wy) * dx,
-            )
-        };
-
-        // FS3 in the adhesion zone, else μp along the FASTSIM direction.
-        let mut adhesion = None;
-        if let StripTheory::Partial {
-            delta,
-            kappa,
-            lambda,
-            spin,
-        } = theory
-        {
-            if zeta > -1.0 + 2.0 * delta {
-                let one_minus = 1.0 - zeta;
-                let s1 = (one_minus * (1.0 + zeta)).max(0.0).sqrt();
-                let s2 = (one_minus * (1.0 + zeta - 2.0 * delta)).max(0.0).sqrt();
-                // √(1−ζ²) − √((1−δ)² − (ζ−δ)²) without cancellation (exact 0 at δ = 0).
-                let diff = if s1 + s2 > 0.0 {
-                    2.0 * delta * one_minus / (s1 + s2)
-                } else {
-                    0.0
-                };
-                let tx = mu_pmax * kappa * diff;
-                let ty = mu_pmax * (lambda * diff + spin * s2);
-                if norm(tx, ty) <= mu_pmax * s1 * (1.0 + BOUND_TOLERANCE) {
-                    adhesion = Some((tx, ty));
-                }
+        let pass_slip = pass.advance(xr, shape);
+        // Inside the zone FS3 only fails its bound check (choice 2).
+        let fs3 = adhesion_zone.as_ref().and_then(|z| z.traction(zeta, root));
+        let (tx, ty) = match fs3 {
+            Some(q) => q,
+            None => {
+                let (q, power) = slip_zone.traction(&pass, pass_slip, rigid, xr, shape);
+                acc.add_power(power);
+                q
             }
-        }
-        let (tx, ty, slip) = match adhesion {
-            Some((tx, ty)) => (tx, ty, false),
-            None => (mu_p * direction.0, mu_p * direction.1, true),
         };
-        if slip {
-            let contribution = norm(tx, ty) * fastsim_slip;
-            // NaN only from 0 × ∞ (no traction, absurd slip): contributes nothing.
-            if !contribution.is_nan() {
-                power += contribution;
-            }
-        } else {
-            sums.n_adhesion += 1;
-        }
+        acc.add(zeta, tx, ty, fs3.is_some());
         qx[i] = tx;
         qy[i] = ty;
-        slipping[i] = slip;
-        sums.fx += tx * dx;
-        sums.fy += ty * dx;
-        sums.x_fy += x * ty * dx;
-        max_sq = max_sq.max(tx * tx + ty * ty);
+        slipping[i] = fs3.is_none();
     }
-    sums.max_traction = max_sq.sqrt();
+    for i in (0..first_adhesion).rev() {
+        let (zeta, root) = element(i);
+        let shape = shape_at(zeta, root);
+        let xr = x_l * zeta;
+        let pass_slip = pass.advance(xr, shape);
+        let ((tx, ty), power) = slip_zone.traction(&pass, pass_slip, rigid, xr, shape);
+        acc.add_power(power);
+        acc.add(zeta, tx, ty, false);
+        qx[i] = tx;
+        qy[i] = ty;
+        slipping[i] = true;
+    }
+    sums.fx = acc.sum_qx * dx;
+    sums.fy = acc.sum_qy * dx;
+    sums.x_fy = (x_c * acc.sum_qy + x_l * acc.sum_zeta_qy) * dx;
+    sums.max_traction = acc.max_sq.sqrt();
+    sums.n_adhesion = acc.n_adhesion;
     // Saturate instead of reporting ∞ (or NaN from ∞ − ∞ later) for absurd creepages.
-    sums.power_density = power.min(f64::MAX);
+    sums.power_density = acc.power.min(f64::MAX);
     sums
+}
+
+/// Running sums over a strip's elements (tractions in Pa; ×Δx at the end).
+#[derive(Default)]
+struct StripAccumulator {
+    sum_qx: f64,
+    sum_qy: f64,
+    /// Σ ζ q_y (the moment about the strip centre, over x_l).
+    sum_zeta_qy: f64,
+    max_sq: f64,
+    /// Σ_slip |q| |S| [N/m].
+    power: f64,
+    n_adhesion: usize,
+}
+
+impl StripAccumulator {
+    #[inline]
+    fn add(&mut self, zeta: f64, tx: f64, ty: f64, adhesion: bool) {
+        self.sum_qx += tx;
+        self.sum_qy += ty;
+        self.sum_zeta_qy += zeta * ty;
+        let sq = tx * tx + ty * ty;
+        if sq > self.max_sq {
+            self.max_sq = sq;
+        }
+        self.n_adhesion += usize::from(adhesion);
+    }
+
+    /// Adds a slipping element's frictional power density |q| |S|.
+    #[inline]
+    fn add_power(&mut self, contribution: f64) {
+        // NaN only from 0 × ∞ (no traction, absurd slip): contributes nothing.
+        self.power += if contribution.is_nan() {
+            0.0
+        } else {
+            contribution
+        };
+    }
+}
+
+/// The slip zone of one strip: μp along the FASTSIM direction (choice 3), or against the
+/// rigid slip where the pass is unusable.
+struct SlipZone {
+    /// B = μ × the bound's peak pressure [Pa].
+    bound_peak: f64,
+    /// Rigid slip along x, ξ − φy [-], and the creepages of the lateral one, η + φ(x + Δx/6).
+    rigid_slip_x: f64,
+    eta: f64,
+    phi: f64,
+    x_c: f64,
+    spin_offset: f64,
+    dx: f64,
+}
+
+impl SlipZone {
+    /// Traction (q_x, q_y) [Pa] of a slipping element at x − x_c = `xr` with bound shape
+    /// `shape`, after `pass` advanced over it (`pass_slip`: its adhesion trial if it slipped),
+    /// and its frictional power density |q| |S| [N/m].
+    #[inline(always)]
+    fn traction(
+        &self,
+        pass: &DirectionPass,
+        pass_slip: Option<(f64, f64)>,
+        rigid: bool,
+        xr: f64,
+        shape: f64,
+    ) -> ((f64, f64), f64) {
+        let mu_p = self.bound_peak * shape;
+        if rigid {
+            return self.against_rigid_slip(xr, mu_p);
+        }
+        match pass_slip {
+            // The pass slipped onto the bound: its traction B·p has |B·p| = μp.
+            Some(trial) => (
+                (self.bound_peak * pass.px, self.bound_peak * pass.py),
+                mu_p * pass.slip(trial),
+            ),
+            // Where the pass adheres its slip is zero.
+            None => {
+                let (ux, uy) = pass.direction();
+                ((mu_p * ux, mu_p * uy), 0.0)
+            }
+        }
+    }
+
+    /// Large-creepage limit with equal flexibilities, where the pass is unusable: μp (`mu_p`)
+    /// against the rigid slip at x − x_c = `xr`, and the slip is the rigid slip over the element.
+    #[cold]
+    fn against_rigid_slip(&self, xr: f64, mu_p: f64) -> ((f64, f64), f64) {
+        let wx = self.rigid_slip_x;
+        let wy = self.eta + self.phi * (self.x_c + xr + self.spin_offset);
+        let (ux, uy) = unit_direction(-wx, -wy);
+        let (tx, ty) = (mu_p * ux, mu_p * uy);
+        ((tx, ty), norm(tx, ty) * (wx.hypot(wy) * self.dx))
+    }
 }
 
 /// Result of a FaStrip solve on a Hertzian ellipse (forces of the rail on the wheel, contact
@@ -717,6 +1088,8 @@ impl FastripResult {
                 nu: 0.0,
                 traction_curvature: 0.0,
                 eta_star_per_eta: 0.0,
+                xi_star_per_xi: 0.0,
+                phi_star_per_phi: 0.0,
             },
         }
     }

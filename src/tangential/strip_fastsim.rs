@@ -60,10 +60,11 @@
 
 use crate::error::InputError;
 use crate::geometry::strips::MAX_STRIPS;
-use crate::tangential::fastrip::semi_ellipse_midpoint_ratio;
+use crate::tangential::fastrip::{semi_ellipse_midpoint_ratio, StripGrid};
 use crate::tangential::fastsim::{
     strip_outs, Creepage, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP,
 };
+use std::sync::Arc;
 
 /// Largest element count per strip (the FMU's `nx` range).
 pub const MAX_ELEMENTS: usize = 1000;
@@ -160,6 +161,8 @@ pub struct StripFastsim {
     shape: Vec<f64>,
     /// [`semi_ellipse_midpoint_ratio`] of `nx` (FaStrip's bound is divided by it).
     midpoint_ratio: f64,
+    /// FaStrip's element centres and semi-ellipse on a strip of `nx` elements.
+    fastrip_grid: Arc<StripGrid>,
 }
 
 /// The bound's shape √(1 − u_i²) at the element centres of a strip of `nx` elements, scaled so
@@ -195,6 +198,7 @@ impl StripFastsim {
             n_strips: 0,
             shape: bound_shape(nx, midpoint_ratio),
             midpoint_ratio,
+            fastrip_grid: Arc::new(StripGrid::new(nx)),
         })
     }
 
@@ -295,20 +299,24 @@ impl StripFastsim {
         speed: f64,
     ) -> StripFastsimResult {
         use crate::tangential::fastrip::{
-            solve_strip_with_pressure, FastripScales, FastripStrip, StripPressure,
+            solve_strip_on_grid, FastripScales, FastripStrip, StripPressure, StripProblem,
         };
         let nx = self.nx;
         let ratio = self.midpoint_ratio;
         let e = &equivalent.contact;
         let (a_e, b_e, g, nu, mu) = (e.a, e.b, e.shear_modulus, e.nu, e.mu);
         let (coefficients, p0_e) = (&equivalent.coefficients, equivalent.peak_pressure());
+        // FS1's factors once per patch; each strip's starred creepages by multiplication.
+        let patch_scales =
+            FastripScales::new(a_e, b_e, coefficients, g, nu, mu, p0_e, 0.0, 0.0, 0.0);
+        // A shared handle on the grid (no allocation), so that the solve can borrow `self`.
+        let grid = Arc::clone(&self.fastrip_grid);
         self.run(strips, speed, |strip, px_row, py_row, slip_row| {
             if !(strip.half_length > 0.0 && strip.pmax > 0.0 && strip.width > 0.0) {
                 return None;
             }
             let k = strip.creepage;
-            let scales =
-                FastripScales::new(a_e, b_e, coefficients, g, nu, mu, p0_e, k.xi, k.eta, k.phi);
+            let scales = patch_scales.with_creepage(k.xi, k.eta, k.phi);
             let strip_input = FastripStrip {
                 y: strip.lever,
                 x_c: strip.x_c,
@@ -318,13 +326,17 @@ impl StripFastsim {
             let (flex, w) = (strip.flexibility, strip.width);
             // The bound sums to the strip's load on its elements, as in `fastrip::solve_strip`.
             let bound = StripPressure::scaled(&strip_input, ratio);
-            let sums = solve_strip_with_pressure(
-                &strip_input,
-                bound,
-                &scales,
+            let problem = StripProblem {
+                strip: &strip_input,
+                pressure: bound,
+                scales: &scales,
                 mu,
                 flex,
-                [k.xi, k.eta, k.phi],
+                creepage: [k.xi, k.eta, k.phi],
+            };
+            let sums = solve_strip_on_grid(
+                &problem,
+                &grid,
                 &mut px_row[..nx],
                 &mut py_row[..nx],
                 &mut slip_row[..nx],
@@ -370,8 +382,9 @@ impl StripFastsim {
         }
     }
 
-    /// The bookkeeping shared by the solvers: clears each strip's row, lets `solve_one` fill it
-    /// (returning `None` for a strip that carries nothing) and sums the patch.
+    /// The bookkeeping of a solver that solves one strip at a time: lets `solve_one` fill each
+    /// strip's row (every element of it) or return `None` for a strip that carries nothing (its
+    /// row is then cleared) and sums the patch.
     fn run(
         &mut self,
         strips: &[TangentialStrip],
@@ -383,28 +396,21 @@ impl StripFastsim {
             &mut [bool],
         ) -> Option<StripTotals>,
     ) -> StripFastsimResult {
-        let n = self.clear(strips);
+        let n = self.take_geometry(strips);
         let nx = self.nx;
         for (j, strip) in strips[..n].iter().enumerate() {
             let row = j * nx..(j + 1) * nx;
-            if let Some(t) = solve_one(
+            match solve_one(
                 strip,
                 &mut self.px[row.clone()],
                 &mut self.py[row.clone()],
                 &mut self.slipping[row],
             ) {
-                self.totals[j] = t;
+                Some(t) => self.totals[j] = t,
+                None => self.clear_rows(j..j + 1),
             }
         }
         self.summarize(strips, speed)
-    }
-
-    /// Takes the geometry of `strips` (at most [`MAX_STRIPS`]: returns how many) and clears
-    /// their element rows and totals.
-    fn clear(&mut self, strips: &[TangentialStrip]) -> usize {
-        let n = self.take_geometry(strips);
-        self.clear_rows(0..n);
-        n
     }
 
     /// Takes the geometry of `strips` (at most [`MAX_STRIPS`]: returns how many) and clears

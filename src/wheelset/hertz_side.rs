@@ -1,7 +1,7 @@
 //! The multi-Hertzian side of a wheel: one Hertz patch per patch group, FASTSIM on each, the
 //! prescribed-load iteration.
 
-use super::balance::{creep_passes, creep_upward, WarmStart};
+use super::balance::{creep_passes, creep_upward, WarmStart, CREEP_TOLERANCE, LOAD_TOLERANCE};
 use super::kinematics::{creepages_at, planar_tangential, point_position};
 use super::{
     store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput,
@@ -12,7 +12,7 @@ use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::groups::{group_bounds, groups_at};
 use crate::geometry::search::{ContactPoint, WheelOnRail};
 use crate::tangential::fastsim::EllipticContact;
-use crate::wheelset::balance::{balance, ForceLaw};
+use crate::wheelset::balance::{balance, ForceLaw, Guess};
 
 /// Fraction of a patch group's depth at which its reference point is taken (see
 /// [`evaluate_side`]): the force centroid of the interpenetration above this fraction of its
@@ -242,8 +242,9 @@ pub(super) fn add_patch(
 /// component by the load iteration on normal forces alone (cheap), then FASTSIM runs once at the
 /// balanced height; the creep component is updated by an accelerated fixed point
 /// ([`CreepFixedPoint`]) until it changes by less than [`CREEP_TOLERANCE`] of Q. `warm` (the
-/// previous step's solution) gives the first approach and creep estimate. Returns the last
-/// creep component found (`None` without a tangential problem).
+/// previous step's solution) gives the first approach, creep estimate and the force's slope.
+/// Returns the last creep component found (`None` without a tangential problem) and the force's
+/// slope at the root ([`crate::wheelset::balance::Balanced::slope`]; NaN where not measured).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn hertz_side(
     side: &mut Side,
@@ -255,10 +256,10 @@ pub(super) fn hertz_side(
     warm: Option<WarmStart>,
     out: &mut SideResult,
     tangential: bool,
-) -> Result<Option<f64>, WheelsetError> {
+) -> Result<(Option<f64>, f64), WheelsetError> {
     let Some(q) = load else {
         evaluate_side(side, ctx, input, z, z, out, tangential)?;
-        return Ok(None);
+        return Ok((None, f64::NAN));
     };
     if q == 0.0 {
         // Lift-off: the wheel just touches; no force.
@@ -266,7 +267,7 @@ pub(super) fn hertz_side(
             z: touch,
             ..SideResult::default()
         };
-        return Ok(None);
+        return Ok((None, f64::NAN));
     }
     // First approach: a Hertzian estimate for the deepest point alone.
     let deepest = side
@@ -283,29 +284,53 @@ pub(super) fn hertz_side(
     let stiffness = unit.normal_force / 1e-4f64.powf(1.5);
     let cos_g = deepest.contact_angle.cos().max(0.05);
     let cold_approach = (q / (stiffness * cos_g)).powf(2.0 / 3.0) / cos_g;
-    let (mut first_approach, start_creep) = warm.map_or((cold_approach, 0.0), |w| {
-        let (approach, creep) = w.predicted();
-        (approach, if tangential { creep } else { 0.0 })
+    let (first_approach, start_creep, first_slope) = warm.map_or((cold_approach, 0.0, None), |w| {
+        let (approach, creep, slope) = w.predicted();
+        (approach, if tangential { creep } else { 0.0 }, slope)
     });
     let level = merge_level(touch, q, ctx.e_star, ctx.settings.setup.wheel_radius);
-    // The force's slope from the previous pass: the next pass's first step.
-    let mut slope = None;
-    creep_passes(q, start_creep, |_, target| {
+    // The previous pass's root, its residual and the force's slope there: the next pass starts
+    // from them without evaluating the root again, with Newton's step.
+    let mut guess = Guess {
+        approach: first_approach,
+        residual: None,
+        slope: first_slope,
+    };
+    let mut last_target = None;
+    let creep = creep_passes(q, start_creep, |k, target| {
+        if let (Some(old), Some(f)) = (last_target, guess.residual) {
+            guess.residual = Some(f + old - target);
+        }
+        // The first pass's target carries the creep estimate's error: balancing it beyond that
+        // is wasted (the next pass starts from its root). Normal forces alone are the strip
+        // models' starting point and the level of their strip layout, which a relative error of
+        // the creep tolerance moves by ~1e−7 of the approach: balanced as loosely.
+        let tolerance = if k == 0 {
+            CREEP_TOLERANCE
+        } else {
+            LOAD_TOLERANCE
+        };
         let balanced = balance(
             touch,
-            first_approach,
+            guess,
             target,
+            tolerance,
             LOAD_ITERATIONS,
             ForceLaw::Hertzian,
-            slope,
             |dz| {
                 Ok::<_, InputError>(
                     evaluate_side(side, ctx, input, dz, level, out, false)? - target,
                 )
             },
         )?;
-        first_approach = balanced.lowering - touch;
-        slope = Some(balanced.slope);
+        guess = Guess {
+            approach: balanced.lowering - touch,
+            // The side's patches belong to the root when the pass ends (evaluated last, or
+            // evaluated again below).
+            residual: Some(balanced.residual),
+            slope: Some(balanced.slope),
+        };
+        last_target = Some(target);
         if !tangential {
             if !balanced.evaluated {
                 evaluate_side(side, ctx, input, balanced.lowering, level, out, false)?;
@@ -317,8 +342,10 @@ pub(super) fn hertz_side(
         } else {
             evaluate_side(side, ctx, input, balanced.lowering, level, out, true)?;
         }
-        Ok(Some(creep_upward(out)))
-    })
+        let tight = balanced.residual.abs() <= LOAD_TOLERANCE * target;
+        Ok(Some((creep_upward(out), tight)))
+    })?;
+    Ok((creep, guess.slope.unwrap_or(f64::NAN)))
 }
 
 /// The interpenetration level at which a wheel's multi-Hertzian patch groups are decided under

@@ -41,7 +41,7 @@ mod slots;
 pub mod strip_side;
 pub mod validity;
 
-pub use balance::{WarmStart, LOAD_CHECK_FLOOR, LOAD_CHECK_TOLERANCE};
+pub use balance::{Trend, WarmStart, LOAD_CHECK_FLOOR, LOAD_CHECK_TOLERANCE};
 pub use slots::Slot;
 
 use nalgebra::Vector3;
@@ -666,7 +666,7 @@ fn solve_side(
     // The strip models start from the Hertz solution (normal forces only), so that their strips
     // are laid out the same way whatever the previous step was; the warm start shortens that
     // Hertz solution and the creep iteration.
-    let mut creep =
+    let (mut creep, slope) =
         hertz_side::hertz_side(side, ctx, input, load, z, touch, warm, out, !strip_model)?;
     let approach = out.z - touch;
     let mut strip_ratio = 1.0;
@@ -684,6 +684,6 @@ fn solve_side(
     assign_slots(&mut side.slots, out);
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)
-        .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratio));
+        .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratio, slope));
     Ok(())
 }

@@ -38,7 +38,7 @@ use crate::normal::{NormalModel, NormalParams, StripModel};
 use crate::tangential::fastsim::Creepage;
 use crate::tangential::patch::{strip_flexibilities, EquivalentEllipse, TangentialModel};
 use crate::tangential::strip_fastsim::TangentialStrip;
-use crate::wheelset::balance::{balance, ForceLaw};
+use crate::wheelset::balance::{balance, ForceLaw, Guess, LOAD_TOLERANCE};
 
 /// One non-elliptic patch: its plane, strips, model state, solution and weight.
 pub struct StripPatch {
@@ -157,6 +157,10 @@ impl StripPatch {
 pub struct StripSide {
     patches: Vec<StripPatch>,
     count: usize,
+    /// The last balanced lowering [m], the vertical force there [N] and the force's slope
+    /// dF/dz there [N/m] (NaN where not measured): the patches' solutions belong to it, so a
+    /// rebalance under a slightly changed force starts there without evaluating it again.
+    last_root: Option<(f64, f64, f64)>,
 }
 
 /// Settings of the strip solve.
@@ -191,6 +195,7 @@ impl StripSide {
                 .map(|_| StripPatch::new(model))
                 .collect::<Option<_>>()?,
             count: 0,
+            last_root: None,
         })
     }
 
@@ -279,10 +284,14 @@ impl StripSide {
         ratio_hint: f64,
     ) -> f64 {
         let approach = (dz_hint - touch).max(0.0);
+        self.last_root = None;
         self.lay_out(geometry, touch + LAYOUT_FACTOR * approach, settings, table);
         match target {
             Some(q) => {
-                let trial = approach * ratio_hint.clamp(0.5, 2.0);
+                let trial = Guess {
+                    approach: approach * ratio_hint.clamp(0.5, 2.0),
+                    ..Guess::default()
+                };
                 self.iterate(q, touch, trial, &settings.params, table)
             }
             None => {
@@ -303,32 +312,47 @@ impl StripSide {
         touch: f64,
         dz: f64,
     ) -> f64 {
-        self.iterate(target, touch, dz - touch, &settings.params, table)
+        let guess = match self.last_root {
+            Some((root, force, slope)) if root == dz => Guess {
+                approach: dz - touch,
+                residual: Some(force - target),
+                slope: Some(slope),
+            },
+            _ => Guess {
+                approach: dz - touch,
+                ..Guess::default()
+            },
+        };
+        self.iterate(target, touch, guess, &settings.params, table)
     }
 
-    /// The lowering at which the vertical force equals `q` > 0 ([`balance`], first trial at the
-    /// approach `approach` beyond `touch`); the patches' solutions are left at that lowering.
+    /// The lowering at which the vertical force equals `q` > 0 ([`balance`] from `guess`, its
+    /// approach beyond `touch`); the patches' solutions are left at that lowering.
     fn iterate(
         &mut self,
         q: f64,
         touch: f64,
-        approach: f64,
+        guess: Guess,
         params: &NormalParams,
         table: &HertzShapeTable,
     ) -> f64 {
-        let first = approach.max(1e-9);
+        let guess = Guess {
+            approach: guess.approach.max(1e-9),
+            ..guess
+        };
         let Ok(balanced) = balance(
             touch,
-            first,
+            guess,
             q,
+            LOAD_TOLERANCE,
             LOAD_ITERATIONS,
             ForceLaw::General,
-            None,
             |dz| Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q),
         );
         if !balanced.evaluated {
             self.vertical_force(balanced.lowering, params, table);
         }
+        self.last_root = Some((balanced.lowering, balanced.residual + q, balanced.slope));
         balanced.lowering
     }
 }
@@ -551,7 +575,9 @@ pub(super) fn solve_strips(
     };
     match load {
         None => pass(side, 0, None).map(|_| None),
-        Some(q) => creep_passes(q, creep, |k, target| Ok(Some(pass(side, k, Some(target))?))),
+        Some(q) => creep_passes(q, creep, |k, target| {
+            Ok(Some((pass(side, k, Some(target))?, true)))
+        }),
     }
 }
 
