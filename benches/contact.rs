@@ -56,6 +56,7 @@ fn bench_wheelset(c: &mut Criterion) {
         (NormalModel::StripesB, TangentialModel::ModelDefault),
         (NormalModel::StripesAB, TangentialModel::ModelDefault),
         (NormalModel::Analyn, TangentialModel::ModelDefault),
+        (NormalModel::CoupledStrips, TangentialModel::ModelDefault),
     ];
     let mut group = c.benchmark_group("wheelset");
     for (model, tangential) in pairs {
@@ -143,6 +144,7 @@ fn bench_moving(c: &mut Criterion) {
         NormalModel::Hertz,
         NormalModel::StripesAB,
         NormalModel::Analyn,
+        NormalModel::CoupledStrips,
     ] {
         let mut ws = wheelset(model, TangentialModel::ModelDefault);
         let mut out = WheelsetResult::default();

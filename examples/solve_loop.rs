@@ -11,7 +11,8 @@
 //! ```
 //!
 //! Instructions per solve = (count at 300 solves − count at 100) / 200. Arguments: the normal
-//! model (`hertz`, `linder`, `kik-piotrowski`, `stripes-b`, `stripes-ab`, `analyn`), the number
+//! model (`hertz`, `linder`, `kik-piotrowski`, `stripes-b`, `stripes-ab`, `analyn`,
+//! `coupled-strips`), the number
 //! of solves, then optionally the motion (`steady`, `moving` or `hunting`), the tangential model
 //! on strip patches (`model-default`, `equivalent-ellipse`, `fastrip`, `local-ellipses`) and
 //! `planar` for planar strip patches.

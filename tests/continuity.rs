@@ -3,7 +3,8 @@
 //! through tread, flange-root and flange contact for every normal model, each step whose forces
 //! change by more than 0.5 % of the wheel load bisected down to 1e−12 m (a steep but continuous
 //! change shrinks with the interval; a jump does not). Also checked on every pose: no error, the
-//! load balanced to 1e−6, and an output slot keeps its patch (its reference point moves by less
+//! load balanced to 1e−6 (the coupled strips: 1e−5, `balance_tolerance`), and an output slot keeps
+//! its patch (its reference point moves by less
 //! than the slot-matching distance from step to step).
 //!
 //! In release builds (`cargo test --release --test continuity`, run by `tests/run_all.sh`) the
@@ -44,9 +45,24 @@ fn largest_change(a: &[f64; 6], b: &[f64; 6]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Largest relative miss of the wheel load a balanced pose may show: the creep iteration's
+/// resolution (1e−7) with margin. The coupled strips get 1e−5: on flange patches their N(δ) can
+/// flatten 16-fold where a short strip enters beside long ones (one collocation point per strip,
+/// docs/theory.md §5.10), so the creep forces' vertical component moves by up to 4e−6 of the load
+/// for a change of the normal load within the balance's tolerance and the creep fixed point closes
+/// on that step (measured: 3.7e−6 at y 5.5 mm, yaw 2 mrad, roll −2.7 mrad, 40 kN).
+fn balance_tolerance(model: NormalModel) -> f64 {
+    if model == NormalModel::CoupledStrips {
+        1e-5
+    } else {
+        1e-6
+    }
+}
+
 struct Sweep {
     ws: Wheelset,
     load: f64,
+    balance: f64,
     out: WheelsetResult,
     /// Worst change that survived bisection, and where.
     worst: (f64, f64),
@@ -58,6 +74,7 @@ impl Sweep {
         Self {
             ws: builtin_wheelset_with(|s| s.normal_model = model),
             load,
+            balance: balance_tolerance(model),
             out: WheelsetResult::default(),
             worst: (0.0, 0.0),
             solves: 0,
@@ -90,7 +107,7 @@ impl Sweep {
         let f = forces(&self.out);
         for fz in [f[2], f[5]] {
             assert!(
-                (fz + self.load).abs() <= 1e-6 * self.load,
+                (fz + self.load).abs() <= self.balance * self.load,
                 "{p:?}: Fz {fz} for {}",
                 self.load
             );

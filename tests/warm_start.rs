@@ -36,6 +36,7 @@ fn a_warm_started_solve_gives_the_cold_solution() {
         NormalModel::Hertz,
         NormalModel::StripesAB,
         NormalModel::Analyn,
+        NormalModel::CoupledStrips,
     ] {
         for y in [0.0, 2e-3, 6e-3] {
             let mut cold = benchmark_wheelset(material, model);

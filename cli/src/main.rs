@@ -85,7 +85,7 @@ enum Command {
 ///
 /// Evaluates the model once (the FMU's own code) and prints a JSON object: every output by name
 /// (nPatches as integers), and "strips": for each patch in contact ("left.p1", ...) its strips
-/// across the rolling direction (Hertz: the ellipse cut into 21 strips; normalModel 2-6: the
+/// across the rolling direction (Hertz: the ellipse cut into 21 strips; normalModel 2-7: the
 /// model's own strips in contact), each with s [m] (lateral coordinate in the contact plane,
 /// towards the field side), yRail [m], xLead, xTrail [m] (leading and trailing edge), pmax [Pa]
 /// (strip maximum pressure), A, B [1/m] (relative curvatures; B as the strip geometry gives it,

@@ -418,6 +418,7 @@ fn creep_figure(
     let others = TangentialModel::ALL[1..]
         .iter()
         .map(|&t| creep(NormalModel::Analyn, t))
+        .chain([creep(NormalModel::CoupledStrips, TangentialModel::Fastrip)])
         .collect::<Result<Vec<_>, _>>()?;
     let mut by_option: Vec<&CreepCurve> = own
         .iter()
@@ -432,7 +433,9 @@ fn creep_figure(
                 own.iter().collect(),
             ),
             (
-                "ANALYN with each tangential option (tangentialModel 1–4), and Hertz".to_string(),
+                "ANALYN with each tangential option (tangentialModel 1–4), Hertz, and the coupled \
+                 strips with FaStrip"
+                    .to_string(),
                 by_option,
             ),
         ],
@@ -497,7 +500,7 @@ impl Document<'_> {
         let mut md = String::new();
         let _ = writeln!(
             md,
-            "railcontact's normal models (`normalModel` 1–6) and tangential options \
+            "railcontact's normal models (`normalModel` 1–7) and tangential options \
              (`tangentialModel` 1–4) against CONTACT, which solves Kalker's exact half-space \
              theory, on the central case of `tests/data/README.md`: normal contact (patch area, \
              maximum pressure, maximum pressure per strip), pure spin (forces, spin moment, slip \

@@ -46,9 +46,14 @@ fn wheelset(model: NormalModel) -> Wheelset {
 /// (area [m²], pmax [Pa]) of the model's right wheel and of the exact solution on the dominant
 /// patch's plane at the wheel's total normal force.
 fn model_and_oracle(ws: &mut Wheelset, y: f64) -> ((f64, f64), (f64, f64)) {
+    model_and_oracle_yawed(ws, y, 0.0)
+}
+
+/// [`model_and_oracle`] at yaw angle `yaw` [rad].
+fn model_and_oracle_yawed(ws: &mut Wheelset, y: f64, yaw: f64) -> ((f64, f64), (f64, f64)) {
     let input = WheelsetInput {
         y,
-        yaw: 0.0,
+        yaw,
         roll: 0.0,
         vertical: Vertical::Loads { left: Q, right: Q },
         creepages: Creepages::Prescribed {
@@ -125,16 +130,24 @@ fn oracle_reproduces_contact_on_the_central_case() {
     assert!((pmax / 1e6 / 888.3 - 1.0).abs() < 0.01, "pmax {pmax}");
 }
 
-#[test]
-fn analyn_against_the_exact_solution_over_lateral_shifts() {
-    let mut ws = wheelset(NormalModel::Analyn);
+/// `model` against the oracle at the poses (lateral shift [mm], yaw [rad]): prints each and
+/// returns the poses whose (area, pmax) errors reach `tolerance`(y in mm).
+fn compare_over_poses(
+    model: NormalModel,
+    poses: &[(f64, f64)],
+    tolerance: impl Fn(f64) -> (f64, f64),
+) -> Vec<String> {
+    let mut ws = wheelset(model);
     let mut failures = Vec::new();
-    for y_mm in [-1.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0] {
-        let ((area, pmax), (exact_area, exact_pmax)) = model_and_oracle(&mut ws, y_mm * 1e-3);
+    for &(y_mm, yaw) in poses {
+        let ((area, pmax), (exact_area, exact_pmax)) =
+            model_and_oracle_yawed(&mut ws, y_mm * 1e-3, yaw);
         let (ea, ep) = (area / exact_area - 1.0, pmax / exact_pmax - 1.0);
         println!(
-            "y {y_mm:+.0} mm: ANALYN {:6.1} mm² {:6.0} MPa | exact {:6.1} mm² {:6.0} MPa | \
-             {:+5.1} % {:+5.1} %",
+            "y {y_mm:+.0} mm, yaw {:+.0} mrad: {} {:6.1} mm² {:6.0} MPa | exact {:6.1} mm² \
+             {:6.0} MPa | {:+5.1} % {:+5.1} %",
+            yaw * 1e3,
+            model.name(),
             area * 1e6,
             pmax / 1e6,
             exact_area * 1e6,
@@ -142,14 +155,59 @@ fn analyn_against_the_exact_solution_over_lateral_shifts() {
             100.0 * ea,
             100.0 * ep
         );
-        let (area_tol, pmax_tol) = if y_mm <= 4.0 {
+        let (area_tol, pmax_tol) = tolerance(y_mm);
+        if ea.abs() >= area_tol || ep.abs() >= pmax_tol {
+            failures.push(format!(
+                "y = {y_mm} mm, yaw {yaw}: area {ea:+.3}, pmax {ep:+.3}"
+            ));
+        }
+    }
+    failures
+}
+
+/// The lateral shifts of the comparisons [mm], at zero yaw.
+const SHIFTS: [(f64, f64); 8] = [
+    (-1.0, 0.0),
+    (0.0, 0.0),
+    (1.0, 0.0),
+    (2.0, 0.0),
+    (3.0, 0.0),
+    (4.0, 0.0),
+    (5.0, 0.0),
+    (6.0, 0.0),
+];
+
+#[test]
+fn analyn_against_the_exact_solution_over_lateral_shifts() {
+    let failures = compare_over_poses(NormalModel::Analyn, &SHIFTS, |y_mm| {
+        if y_mm <= 4.0 {
             (0.10, 0.15)
         } else {
             (0.18, 0.50)
-        };
-        if ea.abs() >= area_tol || ep.abs() >= pmax_tol {
-            failures.push(format!("y = {y_mm} mm: area {ea:+.3}, pmax {ep:+.3}"));
         }
-    }
+    });
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+#[test]
+fn coupled_strips_against_the_exact_solution_over_lateral_shifts() {
+    // normalModel 7 over −1…+6 mm at zero yaw and ±4 mrad at 0 and +3 mm: pmax within 10 %
+    // everywhere (measured ≤ 5.3 %), area within 5 % on the tread and 10 % at the flange root
+    // (+5, +6 mm) — except at +1 and +2 mm, where the patch outline is ANALYN's and is too
+    // narrow there (measured −9.2 % and −7.7 %; ANALYN's own −7.7 % and −5.8 %, strips its
+    // outline admits that the coupled loads leave unloaded are lost too): 10 %, a known limit.
+    let yawed = [(0.0, 4e-3), (0.0, -4e-3), (3.0, 4e-3), (3.0, -4e-3)];
+    let poses: Vec<_> = SHIFTS.iter().chain(&yawed).copied().collect();
+    let failures = compare_over_poses(NormalModel::CoupledStrips, &poses, |y_mm| {
+        let outline_limit = y_mm == 1.0 || y_mm == 2.0;
+        (
+            if y_mm <= 4.0 && !outline_limit {
+                0.05
+            } else {
+                0.10
+            },
+            0.10,
+        )
+    });
     assert!(failures.is_empty(), "{failures:#?}");
 }

@@ -3,11 +3,15 @@
 //! * [`hertz`] — the elliptic (Hertz) solution, the basis of every model;
 //! * [`shape`] — Hertz functions of the curvature ratio, tabulated for per-strip use;
 //! * [`strips`] — the per-strip pressure every strip model writes, and its patch summary;
-//! * [`linder`], [`kik_piotrowski`], [`stripes`], [`analyn`] — the strip models, each one
-//!   [`StripModel`], built by [`NormalModel::strip_model`].
+//! * [`linder`], [`kik_piotrowski`], [`stripes`], [`analyn`], [`coupled_strips`] — the strip
+//!   models, each one [`StripModel`], built by [`NormalModel::strip_model`];
+//! * [`kernel`] — the half-space kernel of a semi-elliptic strip load (KP6), shared by
+//!   `kik_piotrowski` and `coupled_strips`.
 
 pub mod analyn;
+pub mod coupled_strips;
 pub mod hertz;
+pub mod kernel;
 pub mod kik_piotrowski;
 pub mod linder;
 pub mod shape;
@@ -101,27 +105,30 @@ pub enum NormalModel {
     StripesAB,
     /// 6: ANALYN (`analyn`).
     Analyn,
+    /// 7: ANALYN's strips coupled through the half-space (`coupled_strips`).
+    CoupledStrips,
 }
 
 impl NormalModel {
     /// All models in FMU order (`normalModel` = index + 1).
-    pub const ALL: [NormalModel; 6] = [
+    pub const ALL: [NormalModel; 7] = [
         NormalModel::Hertz,
         NormalModel::Linder,
         NormalModel::KikPiotrowski,
         NormalModel::StripesB,
         NormalModel::StripesAB,
         NormalModel::Analyn,
+        NormalModel::CoupledStrips,
     ];
 
-    /// The model of FMU code `code` (1…6).
+    /// The model of FMU code `code` (1…7).
     pub fn from_code(code: i32) -> Option<Self> {
         usize::try_from(code - 1)
             .ok()
             .and_then(|i| Self::ALL.get(i).copied())
     }
 
-    /// FMU code (1…6).
+    /// FMU code (1…7).
     pub fn code(self) -> i32 {
         Self::ALL
             .iter()
@@ -138,6 +145,7 @@ impl NormalModel {
             NormalModel::StripesB => "stripes-b",
             NormalModel::StripesAB => "stripes-ab",
             NormalModel::Analyn => "analyn",
+            NormalModel::CoupledStrips => "coupled-strips",
         }
     }
 
@@ -155,6 +163,7 @@ impl NormalModel {
             NormalModel::StripesB => Box::new(stripes::StripesB::default()),
             NormalModel::StripesAB => Box::new(stripes::StripesAB::default()),
             NormalModel::Analyn => Box::new(analyn::Analyn::default()),
+            NormalModel::CoupledStrips => Box::new(coupled_strips::CoupledStrips::default()),
         })
     }
 }

@@ -107,6 +107,20 @@ pub fn awkward_geometry(name: &str) -> StripGeometry {
         .expect("an awkward geometry of that name")
 }
 
+/// Two contact regions on `n` strips over [−8, 20] mm: a Hertz gap of curvature
+/// [`SWEEP_CURV_B`] around 0 and a second well (curvature 4.5 1/m, 20 µm deeper gap) at 12 mm.
+pub fn two_wells(n: usize) -> StripGeometry {
+    StripGeometry::from_fn(-8e-3, 20e-3, n, |s| {
+        let first = SWEEP_CURV_B * s * s;
+        let second = 20e-6 + 4.5 * (s - 12e-3).powi(2);
+        if first <= second {
+            (first, 0.5, SWEEP_CURV_B)
+        } else {
+            (second, 0.5, 4.5)
+        }
+    })
+}
+
 /// Largest step of `values` between neighbours.
 pub fn max_jump(values: &[f64]) -> f64 {
     values

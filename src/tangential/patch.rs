@@ -78,9 +78,10 @@ impl TangentialModel {
             TangentialModel::ModelDefault => match normal {
                 NormalModel::Linder => FlexibilitySource::ModelLocal,
                 NormalModel::StripesB | NormalModel::StripesAB => FlexibilitySource::LocalHertz,
-                NormalModel::Hertz | NormalModel::KikPiotrowski | NormalModel::Analyn => {
-                    FlexibilitySource::EquivalentEllipse
-                }
+                NormalModel::Hertz
+                | NormalModel::KikPiotrowski
+                | NormalModel::Analyn
+                | NormalModel::CoupledStrips => FlexibilitySource::EquivalentEllipse,
             },
         }
     }

@@ -10,7 +10,7 @@
 //! 3. `normalModel` 1 (`hertz_side`): each group is one Hertz ellipse, with its reference point
 //!    at the centroid of the interpenetration above 0.8 of the group's depth (where `yRail`, the
 //!    contact angle and the rolling radius are taken) and its lateral curvature from the spread of
-//!    the interpenetration (multi-Hertzian: docs/theory.md §2, §7.8); `normalModel` 2–6
+//!    the interpenetration (multi-Hertzian: docs/theory.md §2, §7.8); `normalModel` 2–7
 //!    ([`strip_side`]): strips on each group's contact plane, laid out once per step, solved by
 //!    the strip model (docs/theory.md §5, §7.9);
 //! 4. the wheel's vertical position is either prescribed (`z`) or found so that the vertical force

@@ -109,7 +109,7 @@ def test_nan_and_infinities_of_every_real_parameter_and_input_are_rejected(new_h
         ("WheelRailContact", "nu", 0.6, r"\[0, 0.5\]"),
         ("WheelRailContact", "nStrips", 0, r"integer in \[5, 200\]"),
         ("WheelRailContact", "nStrips", 201, r"integer in \[5, 200\]"),
-        ("WheelRailContact", "normalModel", 7, r"integer in \[1, 6\]"),
+        ("WheelRailContact", "normalModel", 8, r"integer in \[1, 7\]"),
         ("WheelRailContact", "tangentialModel", 0, r"integer in \[1, 4\]"),
         ("WheelRailContact", "ny", 0, r"integer in \[1, 1000\]"),
         ("HertzContact", "N", -1.0, r"\[0, 100000000\] \[N\]"),
@@ -262,7 +262,7 @@ def as_inputs(rows: np.ndarray) -> list[dict[str, float]]:
 
 
 CONFIGS = [
-    {"normalModel": 1 + i % 6, "tangentialModel": 1 + (3 * i // 2) % 4, "planarPatch": i % 3 == 0} for i in range(8)
+    {"normalModel": 1 + i % 7, "tangentialModel": 1 + (3 * i // 2) % 4, "planarPatch": i % 3 == 0} for i in range(8)
 ]
 
 # One instance in its own process: the same FMPy calls as `Slave` (set each input, doStep, one

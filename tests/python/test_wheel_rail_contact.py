@@ -405,9 +405,9 @@ def test_two_instances_with_different_y_are_independent(wrc_model_description, w
 
 
 # ---------------------------------------------------------------------------------------------
-# 5. Non-elliptic normal models (normalModel 2–6)
+# 5. Non-elliptic normal models (normalModel 2–7)
 
-NORMAL_MODELS = {2: "Linder", 3: "Kik-Piotrowski", 4: "STRIPES-B", 5: "STRIPES-A&B", 6: "ANALYN"}
+NORMAL_MODELS = {2: "Linder", 3: "Kik-Piotrowski", 4: "STRIPES-B", 5: "STRIPES-A&B", 6: "ANALYN", 7: "coupled strips"}
 
 
 def _central_params(model: int) -> dict[str, float | int | str]:
@@ -505,7 +505,7 @@ def test_pure_spin_through_the_fmu(new_wrc) -> None:
 
 
 @pytest.mark.parametrize(
-    ("variable", "value", "largest"), [("normalModel", 7, 6), ("tangentialModel", 5, 4)]
+    ("variable", "value", "largest"), [("normalModel", 8, 7), ("tangentialModel", 5, 4)]
 )
 def test_model_option_out_of_range_is_rejected_and_logged(new_wrc, variable: str, value: int, largest: int) -> None:
     slave = new_wrc(initialize=False)

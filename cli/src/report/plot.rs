@@ -38,13 +38,14 @@ pub const AUX_COLOUR: RGBColor = RGBColor(140, 140, 140);
 
 /// The palette: one colour per normal model, the same in every figure (Okabe–Ito colours,
 /// distinguishable with the common colour-vision deficiencies).
-pub const PALETTE: [(NormalModel, RGBColor); 6] = [
+pub const PALETTE: [(NormalModel, RGBColor); 7] = [
     (NormalModel::Hertz, RGBColor(230, 159, 0)),
     (NormalModel::Linder, RGBColor(86, 180, 233)),
     (NormalModel::KikPiotrowski, RGBColor(0, 158, 115)),
     (NormalModel::StripesB, RGBColor(204, 121, 167)),
     (NormalModel::StripesAB, RGBColor(213, 94, 0)),
     (NormalModel::Analyn, RGBColor(0, 114, 178)),
+    (NormalModel::CoupledStrips, RGBColor(240, 228, 66)),
 ];
 
 /// The colour of `model` in [`PALETTE`].
@@ -64,6 +65,7 @@ pub fn model_label(model: NormalModel) -> String {
         NormalModel::StripesB => "STRIPES-B",
         NormalModel::StripesAB => "STRIPES-A&B",
         NormalModel::Analyn => "ANALYN",
+        NormalModel::CoupledStrips => "coupled strips",
     };
     format!("{} {name}", model.code())
 }

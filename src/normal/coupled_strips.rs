@@ -1,0 +1,895 @@
+//! Coupled strips: ANALYN's strip half-lengths, strip loads coupled through the half-space.
+//!
+//! Papers: the strip method of K. Knothe, H. Le The, "A contribution to the calculation of the
+//! contact stress distribution between two elastic bodies of revolution with non-elliptical
+//! contact area", Computers & Structures 18 (1984) 1025–1033 (semi-elliptic pressure along x on
+//! lateral strips, strip loads from collocated half-space displacements); the strip kernel of
+//! Kik–Piotrowski (KP6, `crate::normal::kernel`); the half-lengths of ANALYN, M. Sh. Sichani,
+//! R. Enblom, M. Berg, Vehicle System Dynamics 52 (2014) (A1, `crate::normal::analyn`).
+//! Equations as docs/theory.md §5.10.
+//!
+//! # Equations (labels of docs/theory.md §5.10)
+//!
+//! * **C1** per strip i the semi-ellipse p_i(x) = p0_i √(1 − (x − x_c,i)²/a_i²), with ANALYN's
+//!   half-length a_i = √(δ_loc,i/((1 + α_i)A_i)), δ_loc,i = δ − (1 + β_i) f_i (explicit in δ;
+//!   on a Hertz gap Hertz's a(y)); strips with δ_loc,i ≤ 0 carry nothing.
+//! * **C2** the normal displacement at strip i's centre line, u_i = Σ_j G_ij y_j, of the strip
+//!   loads y_j = 2F_j/(π²E*Δs), F_j = (π/2) p0_j a_j Δs (V1), with
+//!   G_ij = Ĵ((|i−j| + ½)Δs/a_j) − Ĵ((|i−j| − ½)Δs/a_j) (i ≠ j), G_jj = 2Ĵ(Δs/(2a_j)),
+//!   Ĵ(T) = ∫₀^T I(1, t) dt the scale-free integral of KP6's I(c, y) (Boussinesq:
+//!   u = (p0/(πE*a)) ∫∫ √(a² − x²)/√(x² + y²) = y_j G_ij, [`ScaledStripIntegral`]); on an
+//!   adjacent strip (|i − j| = 1) a_j is replaced by max(a_j, ½ a_i) ([`SPREAD`]).
+//! * **C3** complementarity on the strips with a_i > 0, loads bounded by ANALYN's peak:
+//!   0 ≤ y_i ≤ y_max,i with p0 ≤ κ p_ANALYN,i ([`PEAK_BOUND`] κ = 2), and u_i = δ − f_i where
+//!   0 < y_i < y_max,i, u_i ≥ δ − f_i where y_i = 0 (the gap f_i + u_i − δ closes where there is
+//!   load), u_i ≤ δ − f_i where y_i = y_max,i.
+//! * **C4** p0_i = πE* y_i/a_i, N = Σ F_i.
+//! * **C5** a strip whose peak is below [`LIGHT_LOAD`] (¼) of ANALYN's is reported with its
+//!   length shortened by p0_i/(¼ p_ANALYN,i) and its peak raised by the inverse (force kept),
+//!   so that the strip's area vanishes with its load.
+//!
+//! Scaled by strip force, far strips couple symmetrically (G_ij → (π/2) ln((k + ½)/(k − ½)),
+//! k = |i − j|, the point-load field F/(πE*d)) and the diagonal grows like π ln(Δs/a_j) as
+//! a_j → 0. That alone makes an entering strip's load vanish only like 1/ln(1/a_j): where
+//! ANALYN's outline is narrower than the coupled pressure wants (the others' displacement at the
+//! entering strip falls short of δ − f_j), the strip took a finite load within 1e−12 m of wheel
+//! height (measured on S1002/UIC60 flange contact: N fell by 84 N of 84 kN, p0 17 GPa). The
+//! bound y_max,i ∝ p_ANALYN,i a_i ∝ δ_loc,i makes the load start from zero in proportion to
+//! δ_loc, so N(δ) and the pose dependence are continuous; on a Hertz gap it is never reached
+//! (the two peaks agree). G is not symmetric where strips are close (it depends on the column's
+//! a_j); its symmetric part is positive definite on every tested geometry, which makes G a
+//! P-matrix and the bounded complementarity problem's solution unique (tested).
+//!
+//! # Choices (ours)
+//!
+//! * Solver: block principal pivoting (Júdice–Pires: flip every infeasible strip between free,
+//!   unloaded and bounded while their number falls, three more tries, then Murty's least-index
+//!   rule), warm-started from the previous solve's states, each step a partial-pivoting LU of
+//!   the free block on fixed buffers. If the pivoting exceeds its iteration bound or a block is
+//!   singular, projected Gauss–Seidel to 1e−12 takes over; both events are counted
+//!   ([`CoupledStrips::fallbacks`], [`CoupledStrips::unconverged`]), never hidden.
+//! * Ĵ from a table in ln T (one cubic interpolation; ln((k + ½)Δs) is prepared per strip
+//!   offset and ln a_j per column), the far-field series where a strip is more than 64 of its
+//!   half-lengths away ([`ScaledStripIntegral::far_difference`]).
+//!
+//! # Known limits
+//!
+//! * The coupling uses the strips' centre lines x = 0: the small offsets x_c,i between strips
+//!   under yaw are neglected in G (the pressure itself is placed at x_c,i). Collocating at one
+//!   point of a long strip overstates a short neighbour's effect on it; the SPREAD floor limits
+//!   that for adjacent strips only (it leaves the Hertz convergence intact), so a short strip
+//!   two or more strips away from a much longer one still acts at its own length.
+//! * κ = 2 (C3), ½ (C2) and ¼ (C5) are our choices, set for continuity and a monotone N(δ) on
+//!   wheel–rail geometry (measured where they were needed), not fitted to reference data.
+//! * The patch's outline is ANALYN's (A1): where the coupled pressure would extend beyond it
+//!   the strips at the outline hold their peak at the bound κ p_ANALYN and the rest of the load
+//!   moves inwards; the area and the equivalent ellipse are ANALYN's. κ = 2 is our choice (a
+//!   bound, not a fit: the tests and the validation never meet it in the patch's interior).
+//! * Strip discretisation: a_i constant across a strip, collocation at the strip centre
+//!   (errors O(Δs/b), measured in the tests).
+//!
+//! `prepare` and `solve` use buffers sized at construction ([`MAX_STRIPS`]): no allocation, no
+//! panic, no NaN for any finite geometry and any δ.
+
+use std::f64::consts::PI;
+
+use crate::geometry::strips::{PerStrip, StripGeometry, MAX_STRIPS};
+use crate::normal::analyn::Analyn;
+use crate::normal::kernel::ScaledStripIntegral;
+use crate::normal::shape::HertzShapeTable;
+use crate::normal::strips::StripSolution;
+use crate::normal::{NormalParams, StripModel};
+
+/// Relative tolerance of a complementarity violation u_i − (δ − f_i) < 0 at an unloaded strip,
+/// of the largest δ − f_i: rounding in the block solve is ~1e−15 of it.
+const FEASIBILITY_TOL: f64 = 1e-12;
+
+/// Extra flips of every infeasible strip after their number stopped falling (Júdice–Pires).
+const BLOCK_TRIES: usize = 3;
+
+/// Projected Gauss–Seidel sweeps of the fallback.
+const PGS_SWEEPS: usize = 20_000;
+
+/// Bound of a strip's peak pressure as a multiple of ANALYN's on the same strip (C3): never
+/// reached on a Hertz gap (the two agree there), it makes a strip entering contact take its load
+/// from zero in proportion to δ_loc (ANALYN's peak ∝ √δ_loc times a_i ∝ √δ_loc) where the
+/// coupling alone would give it a finite load at once.
+pub const PEAK_BOUND: f64 = 2.0;
+
+/// Shortest half-length with which a strip's load acts on a neighbouring (adjacent) strip's
+/// centre line, as a fraction of that strip's own half-length (C2): a load much shorter than
+/// the neighbour would otherwise stand, through the neighbour's single collocation point at
+/// x = 0, for its whole length, and a short strip entering next to a long one would unload it
+/// by more than it takes (N(δ) falling: measured on S1002/UIC60 flange contact).
+const SPREAD: f64 = 0.5;
+
+/// Peak pressure, as a fraction of ANALYN's on the same strip, below which a strip's reported
+/// length shrinks in proportion to its peak (C5), keeping its force: a strip whose load the
+/// coupling has driven to nearly nothing then also has nearly no length, so the area and the
+/// equivalent ellipse of the tangential problem do not jump when the strip's load starts from
+/// or returns to zero at a finite ANALYN length (measured: FaStrip's creep force's vertical
+/// component jumped by 200 N of 6 kN in S1002/UIC60 flange contact).
+const LIGHT_LOAD: f64 = 0.25;
+
+/// The complementarity state of a candidate strip (C3).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+enum Load {
+    /// 0 < y < y_max, u = δ − f.
+    #[default]
+    Free,
+    /// y = 0, u ≥ δ − f.
+    Unloaded,
+    /// y = y_max, u ≤ δ − f.
+    Bounded,
+}
+
+/// Coupled strips (docs/theory.md §5.10). See the module documentation.
+#[derive(Debug, Clone)]
+pub struct CoupledStrips {
+    /// ANALYN's prepared strips: the half-lengths a_i (C1).
+    analyn: Analyn,
+    /// Ĵ, tabulated at construction.
+    kernel: ScaledStripIntegral,
+    /// Strips prepared.
+    n: usize,
+    /// ln((k + ½)Δs) per strip offset k.
+    log_edge: PerStrip<f64>,
+    /// (k + ½)Δs per strip offset k [m].
+    edge: PerStrip<f64>,
+    /// ln((k + ½)/(k − ½)) per offset k ≥ 1.
+    log_ratio: PerStrip<f64>,
+    /// Scratch of a solve, per candidate (strip with a_i > 0): its strip index, a_i, δ − f_i,
+    /// load y_i and its bound, residual u_i − (δ − f_i), state; Ĵ at a column's strip edges.
+    strip: PerStrip<usize>,
+    half: PerStrip<f64>,
+    rhs: PerStrip<f64>,
+    load: PerStrip<f64>,
+    residual: PerStrip<f64>,
+    bound: PerStrip<f64>,
+    peak: PerStrip<f64>,
+    state: PerStrip<Load>,
+    log_half: PerStrip<f64>,
+    edge_integral: PerStrip<f64>,
+    /// States of the last solve, per strip (the warm start).
+    warm: PerStrip<Load>,
+    /// G of the candidates (row stride MAX_STRIPS) and the block being factorised.
+    matrix: Vec<f64>,
+    block: Vec<f64>,
+    /// Positions of the loaded candidates; the block's right-hand side.
+    block_index: PerStrip<usize>,
+    block_rhs: PerStrip<f64>,
+    /// Solves that needed the Gauss–Seidel fallback, and of them those that did not converge.
+    fallbacks: u64,
+    unconverged: u64,
+}
+
+impl Default for CoupledStrips {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl CoupledStrips {
+    /// The model with its kernel table and buffers (allocates once, here).
+    pub fn new() -> Self {
+        Self {
+            analyn: Analyn::default(),
+            kernel: ScaledStripIntegral::new(),
+            n: 0,
+            log_edge: PerStrip::default(),
+            edge: PerStrip::default(),
+            log_ratio: PerStrip::default(),
+            strip: PerStrip::default(),
+            half: PerStrip::default(),
+            rhs: PerStrip::default(),
+            load: PerStrip::default(),
+            residual: PerStrip::default(),
+            bound: PerStrip::default(),
+            peak: PerStrip::default(),
+            state: PerStrip::default(),
+            log_half: PerStrip::default(),
+            edge_integral: PerStrip::default(),
+            warm: PerStrip::default(),
+            matrix: vec![0.0; MAX_STRIPS * MAX_STRIPS],
+            block: vec![0.0; MAX_STRIPS * MAX_STRIPS],
+            block_index: PerStrip::default(),
+            block_rhs: PerStrip::default(),
+            fallbacks: 0,
+            unconverged: 0,
+        }
+    }
+
+    /// Solves since construction that fell back to projected Gauss–Seidel (pivoting cycled or
+    /// met a singular block).
+    pub fn fallbacks(&self) -> u64 {
+        self.fallbacks
+    }
+
+    /// Fallback solves that did not reach their tolerance (their last iterate was used).
+    pub fn unconverged(&self) -> u64 {
+        self.unconverged
+    }
+
+    /// The last solve's candidates (test access): state, load y_i and its bound [m], residual
+    /// u_i − (δ − f_i) [m].
+    #[cfg(test)]
+    fn candidates(&self, m: usize) -> impl Iterator<Item = (Load, f64, f64, f64)> + '_ {
+        (0..m).map(|r| (self.state[r], self.load[r], self.bound[r], self.residual[r]))
+    }
+
+    /// G of the `m` candidates (C2) into `matrix`. Column c's strip acts with its own
+    /// half-length a_c (Ĵ at the column's strip edges, computed once), on an adjacent row strip
+    /// with max(a_c, [`SPREAD`] a_r).
+    fn assemble(&mut self, m: usize) {
+        for r in 0..m {
+            self.log_half[r] = self.half[r].ln();
+        }
+        for c in 0..m {
+            let a = self.half[c];
+            let log_a = self.log_half[c];
+            let j = self.strip[c];
+            let far = (self.strip[0].abs_diff(j)).max(self.strip[m - 1].abs_diff(j));
+            for k in 0..=far {
+                let t = self.edge[k] / a;
+                self.edge_integral[k] = self.kernel.at_log(t, self.log_edge[k] - log_a);
+            }
+            for r in 0..m {
+                let k = self.strip[r].abs_diff(j);
+                let spread = SPREAD * self.half[r];
+                let value = if k == 0 {
+                    2.0 * self.edge_integral[0]
+                } else if k > 1 || spread <= a {
+                    self.strip_difference(k, a, |k| self.edge_integral[k])
+                } else {
+                    let log_spread = SPREAD.ln() + self.log_half[r];
+                    self.strip_difference(k, spread, |k| {
+                        self.kernel
+                            .at_log(self.edge[k] / spread, self.log_edge[k] - log_spread)
+                    })
+                };
+                self.matrix[r * MAX_STRIPS + c] = value;
+            }
+        }
+    }
+
+    /// Ĵ((k + ½)Δs/c) − Ĵ((k − ½)Δs/c) for k ≥ 1 with `edge_integral`(k) = Ĵ((k + ½)Δs/c):
+    /// the far-field series once the nearer edge is beyond the table.
+    fn strip_difference(&self, k: usize, c: f64, edge_integral: impl Fn(usize) -> f64) -> f64 {
+        if self.edge[k - 1] >= self.kernel.t_max() * c {
+            let (t_lo, t_hi) = (self.edge[k - 1] / c, self.edge[k] / c);
+            ScaledStripIntegral::far_difference(t_lo, t_hi, self.log_ratio[k])
+        } else {
+            edge_integral(k) - edge_integral(k - 1)
+        }
+    }
+
+    /// Loads of the free strips (block solve, with the bounded ones at their bound and the
+    /// unloaded ones at zero) and the residuals; `false` if the block is singular.
+    fn solve_free(&mut self, m: usize) -> bool {
+        let mut size = 0;
+        for r in 0..m {
+            self.load[r] = match self.state[r] {
+                Load::Bounded => self.bound[r],
+                _ => 0.0,
+            };
+            if self.state[r] == Load::Free {
+                self.block_index[size] = r;
+                size += 1;
+            }
+        }
+        for (p, &r) in self.block_index[..size].iter().enumerate() {
+            let row = &self.matrix[r * MAX_STRIPS..r * MAX_STRIPS + m];
+            for (q, &c) in self.block_index[..size].iter().enumerate() {
+                self.block[p * MAX_STRIPS + q] = row[c];
+            }
+            let fixed: f64 = row.iter().zip(&self.load[..m]).map(|(g, y)| g * y).sum();
+            self.block_rhs[p] = self.rhs[r] - fixed;
+        }
+        if !lu_solve(&mut self.block, size, &mut self.block_rhs[..size]) {
+            return false;
+        }
+        for p in 0..size {
+            self.load[self.block_index[p]] = self.block_rhs[p];
+        }
+        self.update_residuals(m);
+        true
+    }
+
+    /// u − (δ − f) at every candidate from the current loads.
+    fn update_residuals(&mut self, m: usize) {
+        for r in 0..m {
+            let row = &self.matrix[r * MAX_STRIPS..r * MAX_STRIPS + m];
+            let u: f64 = row.iter().zip(&self.load[..m]).map(|(g, y)| g * y).sum();
+            self.residual[r] = u - self.rhs[r];
+        }
+    }
+
+    /// Whether candidate `r` violates C3: a free load outside [0, y_max], an unloaded strip the
+    /// others push through the surface, a bounded strip whose surface would lift off.
+    fn infeasible(&self, r: usize, tol: f64) -> bool {
+        match self.state[r] {
+            Load::Free => self.load[r] < 0.0 || self.load[r] > self.bound[r],
+            Load::Unloaded => self.residual[r] < -tol,
+            Load::Bounded => self.residual[r] > tol,
+        }
+    }
+
+    /// The state candidate `r` moves to when it is infeasible.
+    fn flip(&mut self, r: usize) {
+        self.state[r] = match self.state[r] {
+            Load::Free if self.load[r] < 0.0 => Load::Unloaded,
+            Load::Free => Load::Bounded,
+            Load::Unloaded | Load::Bounded => Load::Free,
+        };
+    }
+
+    /// C3 by block principal pivoting; `false` if it did not finish.
+    fn pivot(&mut self, m: usize, tol: f64) -> bool {
+        let mut best = usize::MAX;
+        let mut tries = BLOCK_TRIES;
+        let mut least_index = false;
+        for _ in 0..(50 + 10 * m) {
+            if !self.solve_free(m) {
+                return false;
+            }
+            let count = (0..m).filter(|&r| self.infeasible(r, tol)).count();
+            if count == 0 {
+                return true;
+            }
+            if !least_index && count < best {
+                best = count;
+                tries = BLOCK_TRIES;
+            } else if !least_index && tries > 0 {
+                tries -= 1;
+            } else {
+                least_index = true;
+            }
+            if least_index {
+                if let Some(r) = (0..m).find(|&r| self.infeasible(r, tol)) {
+                    self.flip(r);
+                }
+            } else {
+                for r in 0..m {
+                    if self.infeasible(r, tol) {
+                        self.flip(r);
+                    }
+                }
+            }
+        }
+        false
+    }
+
+    /// C3 by projected Gauss–Seidel (onto [0, y_max]) from the current loads; `true` once a
+    /// sweep changes no load by more than 1e−12 of the largest.
+    fn gauss_seidel(&mut self, m: usize) -> bool {
+        for r in 0..m {
+            self.load[r] = self.load[r].clamp(0.0, self.bound[r]);
+            if !self.load[r].is_finite() {
+                self.load[r] = 0.0;
+            }
+        }
+        let mut converged = false;
+        for _ in 0..PGS_SWEEPS {
+            let (mut change, mut largest) = (0.0_f64, 0.0_f64);
+            for r in 0..m {
+                let row = &self.matrix[r * MAX_STRIPS..r * MAX_STRIPS + m];
+                let u: f64 = row.iter().zip(&self.load[..m]).map(|(g, y)| g * y).sum();
+                let diagonal = row[r];
+                let next = if diagonal > 0.0 {
+                    (self.load[r] - (u - self.rhs[r]) / diagonal).clamp(0.0, self.bound[r])
+                } else {
+                    0.0
+                };
+                change = change.max((next - self.load[r]).abs());
+                largest = largest.max(next);
+                self.load[r] = next;
+            }
+            if change <= 1e-12 * largest {
+                converged = true;
+                break;
+            }
+        }
+        for r in 0..m {
+            self.state[r] = if self.load[r] <= 0.0 {
+                Load::Unloaded
+            } else if self.load[r] >= self.bound[r] {
+                Load::Bounded
+            } else {
+                Load::Free
+            };
+        }
+        self.update_residuals(m);
+        converged
+    }
+}
+
+/// Solves the `size`² system in `a` (row stride [`MAX_STRIPS`], overwritten) for `b` in place by
+/// Gaussian elimination with partial pivoting; `false` for a singular (or non-finite) matrix.
+fn lu_solve(a: &mut [f64], size: usize, b: &mut [f64]) -> bool {
+    for col in 0..size {
+        let mut pivot = col;
+        for r in col + 1..size {
+            if a[r * MAX_STRIPS + col].abs() > a[pivot * MAX_STRIPS + col].abs() {
+                pivot = r;
+            }
+        }
+        let p = a[pivot * MAX_STRIPS + col];
+        if !(p.abs() > 0.0 && p.is_finite()) {
+            return false;
+        }
+        if pivot != col {
+            for c in col..size {
+                a.swap(pivot * MAX_STRIPS + c, col * MAX_STRIPS + c);
+            }
+            b.swap(pivot, col);
+        }
+        // Rows below the pivot row, as slices (no index arithmetic in the inner loop).
+        let (upper, lower) = a.split_at_mut((col + 1) * MAX_STRIPS);
+        let pivot_row = &upper[col * MAX_STRIPS + col + 1..col * MAX_STRIPS + size];
+        let b_col = b[col];
+        for (k, row) in lower
+            .chunks_mut(MAX_STRIPS)
+            .take(size - col - 1)
+            .enumerate()
+        {
+            let factor = row[col] / p;
+            if factor != 0.0 {
+                for (x, u) in row[col + 1..size].iter_mut().zip(pivot_row) {
+                    *x -= factor * u;
+                }
+                b[col + 1 + k] -= factor * b_col;
+            }
+        }
+    }
+    for col in (0..size).rev() {
+        let row = &a[col * MAX_STRIPS..col * MAX_STRIPS + size];
+        let sum: f64 = row[col + 1..]
+            .iter()
+            .zip(&b[col + 1..size])
+            .map(|(u, x)| u * x)
+            .sum();
+        b[col] = (b[col] - sum) / row[col];
+    }
+    b.iter().all(|v| v.is_finite())
+}
+
+impl StripModel for CoupledStrips {
+    fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
+        self.analyn.prepare(geom, params, table);
+        let n = geom.len();
+        self.n = n;
+        let ds = geom.ds;
+        for k in 0..n {
+            let edge = (k as f64 + 0.5) * ds;
+            self.edge[k] = edge;
+            self.log_edge[k] = edge.ln();
+            self.log_ratio[k] = if k == 0 {
+                0.0
+            } else {
+                ((k as f64 + 0.5) / (k as f64 - 0.5)).ln()
+            };
+        }
+    }
+
+    fn solve(
+        &mut self,
+        geom: &StripGeometry,
+        params: &NormalParams,
+        _shapes: &HertzShapeTable,
+        delta: f64,
+        out: &mut StripSolution,
+    ) -> f64 {
+        let n = match out.begin(geom, delta, params.e_star) {
+            Some(n) => n.min(self.n),
+            None => return 0.0,
+        };
+        // C1: the candidates.
+        let mut m = 0;
+        let mut rhs_max: f64 = 0.0;
+        for i in 0..n {
+            if let Some((a, peak)) = self.analyn.strip_at(i, delta) {
+                let rhs = delta - geom.f[i];
+                // y_max from p0 ≤ PEAK_BOUND p_ANALYN min(1, 2a/Δs) (p0 = πE* y/a,
+                // p_ANALYN = E* peak).
+                let bound = PEAK_BOUND * peak * a / PI * (2.0 * a / geom.ds).min(1.0);
+                if a > 0.0 && a.is_finite() && rhs.is_finite() && bound > 0.0 && bound.is_finite() {
+                    self.strip[m] = i;
+                    self.half[m] = a;
+                    self.rhs[m] = rhs;
+                    self.bound[m] = bound;
+                    self.peak[m] = peak;
+                    self.state[m] = self.warm[i];
+                    rhs_max = rhs_max.max(rhs.abs());
+                    m += 1;
+                }
+            }
+        }
+        if m == 0 {
+            return 0.0;
+        }
+        // C2, C3.
+        self.assemble(m);
+        let tol = FEASIBILITY_TOL * rhs_max;
+        if !self.pivot(m, tol) {
+            self.fallbacks += 1;
+            if !self.gauss_seidel(m) {
+                self.unconverged += 1;
+            }
+        }
+        // C4, with the length of a lightly loaded strip shortened (C5).
+        self.warm[..n].fill(Load::Free);
+        for r in 0..m {
+            let i = self.strip[r];
+            self.warm[i] = self.state[r];
+            let y = self.load[r];
+            if y > 0.0 {
+                let a = self.half[r];
+                let pmax = PI * y / a;
+                let shortening = (pmax / (LIGHT_LOAD * self.peak[r])).min(1.0);
+                out.set(
+                    i,
+                    a * shortening,
+                    params.e_star * pmax / shortening,
+                    geom.ds,
+                );
+            }
+        }
+        out.normal_force()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
+    use crate::normal::strips::PatchSummary;
+    use crate::normal::test_support::{
+        self, assert_continuous_sweep, awkward_geometries, awkward_geometry, no_nan, table,
+        two_wells, AWKWARD_DELTAS, SECOND_MINIMUM,
+    };
+
+    /// Lateral curvature of the Hertz cases [1/m].
+    const CURV_B: f64 = 1.5;
+    /// Approach of the Hertz cases [m].
+    const DELTA: f64 = 50e-6;
+
+    fn params() -> NormalParams {
+        NormalParams::default()
+    }
+
+    fn run(geom: &StripGeometry, delta: f64) -> (StripSolution, f64) {
+        test_support::run(&mut CoupledStrips::default(), geom, &params(), delta)
+    }
+
+    fn hertz(ratio: f64) -> (f64, HertzPatch) {
+        let a = ratio * CURV_B;
+        (
+            a,
+            hertz_from_approach(a, CURV_B, DELTA, params().e_star).unwrap(),
+        )
+    }
+
+    /// A wheel–rail-like gap: a Hertz core with a quartic flattening and a lateral tilt of A
+    /// (the strips at the field side in contact with B falling to 0).
+    fn flattened(n: usize, shift: f64) -> StripGeometry {
+        StripGeometry::from_fn(-9e-3, 9e-3, n, move |s| {
+            let u = s - shift;
+            let f = 0.5 * u * u + 4e3 * u.powi(4) * (1.0 - 0.3 * u / 9e-3);
+            (f, 8.0 * (1.0 + 20.0 * u), 0.5 + 24e3 * u * u)
+        })
+    }
+
+    #[test]
+    fn hertz_gap_converges_to_hertz() {
+        // A/B = 0.2, 1, 5 on strips not aligned with the patch ([−1.07 b, 1.13 b]). The half-lengths
+        // are Hertz's a(y) exactly (ANALYN's A1); the loads come from collocating the strips'
+        // displacements at their centres, a midpoint rule in y whose error is O((Δs/b)²):
+        // measured N/N_H − 1 = 3.2e−4, 1.0e−4, 1.8e−5 (A/B = 0.2) at 24, 48, 96 strips, pmax
+        // likewise. Bound 0.1 (Δs/b)² (8.4e−4 at 24 strips), and 96 strips at least 4× better
+        // than 24. The area is ANALYN's, its midpoint sum's edge error ≤ 2e−3 (analyn.rs).
+        for ratio in [0.2, 1.0, 5.0] {
+            let (curv_a, h) = hertz(ratio);
+            let mut errors = Vec::new();
+            for n in [24, 48, 96] {
+                let geom = StripGeometry::quadratic(curv_a, CURV_B, -1.07 * h.b, 1.13 * h.b, n);
+                let mut model = CoupledStrips::default();
+                let (sol, force) = test_support::run(&mut model, &geom, &params(), DELTA);
+                no_nan(&sol, force);
+                let sum = PatchSummary::of(&geom, &sol);
+                let (e_n, e_area, e_p) = (
+                    force / h.normal_force - 1.0,
+                    sum.area / h.area() - 1.0,
+                    sum.pmax / h.p0 - 1.0,
+                );
+                eprintln!(
+                    "A/B = {ratio}, {n} strips: N/N_H − 1 = {e_n:+.2e}, area {e_area:+.2e}, \
+                     pmax {e_p:+.2e}, {} strips loaded",
+                    sum.strips_in_contact
+                );
+                let bound = 0.1 * (geom.ds / h.b).powi(2);
+                assert!(e_n.abs() < bound && e_p.abs() < bound, "{n}");
+                assert!(e_area.abs() < 2e-3);
+                assert_eq!(model.fallbacks(), 0);
+                // The peak bound is never reached on a Hertz gap.
+                assert!(model
+                    .candidates(sum.strips_in_contact)
+                    .all(|c| c.0 != Load::Bounded));
+                errors.push(e_n.abs().max(e_p.abs()));
+            }
+            assert!(errors[2] < 0.25 * errors[0]);
+        }
+    }
+
+    /// The symmetric part of G on the last solve's `m` candidates is positive definite
+    /// (Cholesky succeeds): then G is a P-matrix and C3 has one solution.
+    fn symmetric_part_is_positive_definite(model: &CoupledStrips, m: usize) -> bool {
+        let g = |r: usize, c: usize| model.matrix[r * MAX_STRIPS + c];
+        let mut l = vec![0.0; m * m];
+        for r in 0..m {
+            for c in 0..=r {
+                let mut sum = 0.5 * (g(r, c) + g(c, r));
+                for k in 0..c {
+                    sum -= l[r * m + k] * l[c * m + k];
+                }
+                if r == c {
+                    if sum <= 0.0 {
+                        return false;
+                    }
+                    l[r * m + r] = sum.sqrt();
+                } else {
+                    l[r * m + c] = sum / l[c * m + c];
+                }
+            }
+        }
+        true
+    }
+
+    #[test]
+    fn solution_is_the_unique_complementary_one() {
+        // On a Hertz gap, two wells, the B-crossing family and a flattened gap: loads in
+        // [0, y_max]; residual u − (δ − f) ≥ −1e−12 (δ − f)_max where unloaded, ≤ 1e−12 (δ − f)_max
+        // at the bound, |residual| ≤ 1e−10 (δ − f)_max where free (the block solve's rounding);
+        // G's symmetric part positive definite (uniqueness); projected Gauss–Seidel from zero
+        // loads reaches the same loads.
+        let (curv_a, h) = hertz(0.3);
+        let cases = [
+            (
+                StripGeometry::quadratic(curv_a, CURV_B, -1.2 * h.b, 1.1 * h.b, 40),
+                DELTA,
+            ),
+            (two_wells(60), 40e-6),
+            (two_wells(120), 25e-6),
+            (test_support::b_crossing_geometry(4e-3, 10e-3), DELTA),
+            (flattened(24, 0.0), 60e-6),
+            (flattened(48, 1e-3), 30e-6),
+        ];
+        for (geom, delta) in &cases {
+            let mut model = CoupledStrips::default();
+            let (sol, force) = test_support::run(&mut model, geom, &params(), *delta);
+            no_nan(&sol, force);
+            assert!(force > 0.0);
+            let m = (0..geom.n)
+                .filter(|&i| model.analyn.strip_at(i, *delta).is_some())
+                .count();
+            let scale = (0..m).map(|r| model.rhs[r]).fold(0.0, f64::max);
+            let (mut free, mut bounded) = (0, 0);
+            for (state, y, bound, residual) in model.candidates(m) {
+                assert!((0.0..=bound).contains(&y));
+                match state {
+                    Load::Free => {
+                        free += 1;
+                        assert!(residual.abs() <= 1e-10 * scale, "{residual}");
+                    }
+                    Load::Unloaded => {
+                        assert!(y == 0.0 && residual >= -1e-12 * scale, "{residual}");
+                    }
+                    Load::Bounded => {
+                        bounded += 1;
+                        assert!(y == bound && residual <= 1e-12 * scale, "{residual}");
+                    }
+                }
+            }
+            assert!(symmetric_part_is_positive_definite(&model, m));
+            let pivoted: Vec<f64> = (0..m).map(|r| model.load[r]).collect();
+            model.load[..m].fill(0.0);
+            assert!(model.gauss_seidel(m));
+            let largest = pivoted.iter().copied().fold(0.0, f64::max);
+            for (gs, pv) in model.load[..m].iter().zip(&pivoted) {
+                assert!((gs - pv).abs() <= 1e-9 * largest);
+            }
+            eprintln!("{m} candidates, {free} free, {bounded} at the bound, N = {force:.1} N");
+            assert_eq!(model.fallbacks(), 0);
+        }
+    }
+
+    #[test]
+    fn warm_start_does_not_change_the_solution() {
+        // The same δ sequence up and down on one model (warm) and on fresh models (cold): the
+        // final loaded set fixes the block solve, so the results agree to rounding.
+        let geom = two_wells(80);
+        let mut warm = CoupledStrips::default();
+        warm.prepare(&geom, &params(), table());
+        let mut out = StripSolution::default();
+        for k in (0..60).chain((0..60).rev()) {
+            let delta = 1e-6 * (1.0 + k as f64);
+            let n_warm = warm.solve(&geom, &params(), table(), delta, &mut out);
+            let (_, n_cold) = run(&geom, delta);
+            assert!((n_warm - n_cold).abs() <= 1e-12 * n_cold, "δ = {delta}");
+        }
+        assert_eq!(warm.fallbacks(), 0);
+    }
+
+    #[test]
+    fn mirrored_gap_gives_mirrored_pressure() {
+        let n = 61;
+        let geom = flattened(n, 0.7e-3);
+        let mut mirror = geom.clone();
+        for i in 0..n {
+            let j = n - 1 - i;
+            mirror.s[i] = -geom.s[j];
+            mirror.f[i] = geom.f[j];
+            mirror.curv_a[i] = geom.curv_a[j];
+            mirror.curv_b[i] = geom.curv_b[j];
+        }
+        let (sol, n1) = run(&geom, 40e-6);
+        let (sol_m, n2) = run(&mirror, 40e-6);
+        let p_max = sol.pmax.iter().copied().fold(0.0, f64::max);
+        assert!(p_max > 0.0);
+        for i in 0..n {
+            let j = n - 1 - i;
+            assert_eq!(sol.half_length[i], sol_m.half_length[j]);
+            assert!((sol.pmax[i] - sol_m.pmax[j]).abs() <= 1e-9 * p_max);
+        }
+        assert!((n1 - n2).abs() <= 1e-9 * n1);
+    }
+
+    #[test]
+    fn awkward_inputs_give_no_nan_and_no_panic() {
+        let mut model = CoupledStrips::default();
+        for (name, geom) in &awkward_geometries() {
+            for delta in AWKWARD_DELTAS {
+                for p in [
+                    params(),
+                    NormalParams {
+                        b_min: f64::NAN,
+                        e_star: f64::NAN,
+                        ..params()
+                    },
+                ] {
+                    let (sol, n) = test_support::run(&mut model, geom, &p, delta);
+                    no_nan(&sol, n);
+                    if delta.is_nan() || delta <= 0.0 || p.e_star.is_nan() {
+                        assert_eq!(n, 0.0, "{name}");
+                    }
+                }
+            }
+        }
+        assert_eq!(model.unconverged(), 0);
+        // Two minima: both regions carry load, the hump between them none.
+        let geom = &awkward_geometry("two minima");
+        let (sol, _) = run(geom, 1e-6);
+        let loaded_near = |target: f64| {
+            (0..geom.n).any(|i| (geom.s[i] - target).abs() < 1e-3 && sol.force[i] > 0.0)
+        };
+        assert!(loaded_near(0.0) && loaded_near(SECOND_MINIMUM));
+        assert!((0..geom.n)
+            .any(|i| (geom.s[i] - 0.5 * SECOND_MINIMUM).abs() < 2e-4 && sol.force[i] == 0.0));
+    }
+
+    #[test]
+    fn normal_force_is_continuous_while_b_crosses_zero() {
+        assert_continuous_sweep(CoupledStrips::default, 1.5 * hertz(1.0 / 1.5).1.b, DELTA);
+    }
+
+    /// Whether every run of loaded strips in `sol` has at least 3 strips.
+    fn runs_of_three(sol: &StripSolution) -> bool {
+        let mut run = 0;
+        for i in 0..=sol.n {
+            if i < sol.n && sol.force[i] > 0.0 {
+                run += 1;
+            } else if run > 0 {
+                if run < 3 {
+                    return false;
+                }
+                run = 0;
+            }
+        }
+        true
+    }
+
+    #[test]
+    fn force_is_monotone_and_continuous_in_the_approach() {
+        // N(δ) from below the first strip's entry through strips entering and a second region
+        // appearing: non-decreasing; while every loaded region spans ≥ 3 strips no 0.5 % step of
+        // δ raises N by more than the trend δ^{3/2} (× 1.0075) and a margin for the entering edge
+        // strips (measured ≤ 1.0121 on the Hertz gap, the two wells and the flattened gap at 24 strips):
+        // × 1.02. A region's first strips rise steeper (not bounded here).
+        for geom in [hertz_gap_48(), two_wells(60), flattened(24, 0.4e-3)] {
+            let mut model = CoupledStrips::default();
+            model.prepare(&geom, &params(), table());
+            let mut out = StripSolution::default();
+            let mut delta = 1e-8;
+            let mut last = model.solve(&geom, &params(), table(), delta, &mut out);
+            let mut last_regular = false;
+            let mut largest_step: f64 = 0.0;
+            while delta < 3e-4 {
+                delta *= 1.005;
+                let n = model.solve(&geom, &params(), table(), delta, &mut out);
+                no_nan(&out, n);
+                assert!(n >= last * (1.0 - 1e-12), "δ = {delta}: {n} < {last}");
+                let regular = runs_of_three(&out) && last > 0.0;
+                if regular && last_regular {
+                    largest_step = largest_step.max(n / last);
+                }
+                last = n;
+                last_regular = regular;
+            }
+            eprintln!("largest step N(1.005 δ)/N(δ) = {largest_step:.5}");
+            assert!(largest_step < 1.02);
+            assert_eq!(model.fallbacks(), 0);
+        }
+    }
+
+    fn hertz_gap_48() -> StripGeometry {
+        let (curv_a, h) = hertz(0.5);
+        StripGeometry::quadratic(curv_a, CURV_B, -2.0 * h.b, 2.0 * h.b, 48)
+    }
+
+    #[test]
+    fn force_is_continuous_in_a_shifted_gap() {
+        // The gap slid across the strips by two strip widths at fixed δ (strips entering and
+        // leaving): the largest change between neighbouring shifts, bisected 40 times (to
+        // 1e−12 of the strip width), falls below 1e−9 of N (a jump would stay; measured ~1e−15:
+        // an entering strip's load starts from zero ∝ δ_loc under the peak bound). And N stays
+        // within the strip discretisation of its mean (1e−2).
+        for geom_of in [
+            (|e: f64| flattened(24, e)) as fn(f64) -> StripGeometry,
+            |e: f64| {
+                let (curv_a, h) = hertz(0.5);
+                StripGeometry::from_fn(-2.0 * h.b, 2.0 * h.b, 24, move |s| {
+                    (CURV_B * (s - e) * (s - e), curv_a, CURV_B)
+                })
+            },
+        ] {
+            let width = geom_of(0.0).ds;
+            let force = |e: f64| run(&geom_of(e), 40e-6).1;
+            let steps = 200;
+            let shifts: Vec<f64> = (0..=steps)
+                .map(|k| 2.0 * width * k as f64 / steps as f64)
+                .collect();
+            let forces: Vec<f64> = shifts.iter().map(|&e| force(e)).collect();
+            let mean = forces.iter().sum::<f64>() / forces.len() as f64;
+            let spread = forces
+                .iter()
+                .map(|n| (n / mean - 1.0).abs())
+                .fold(0.0, f64::max);
+            let k = (0..steps)
+                .max_by(|&a, &b| {
+                    let jump = |k: usize| (forces[k + 1] - forces[k]).abs();
+                    jump(a).total_cmp(&jump(b))
+                })
+                .unwrap();
+            let coarse = (forces[k + 1] - forces[k]).abs();
+            let (mut lo, mut hi) = (shifts[k], shifts[k + 1]);
+            let (mut f_lo, mut f_hi) = (forces[k], forces[k + 1]);
+            for _ in 0..40 {
+                let mid = 0.5 * (lo + hi);
+                let f_mid = force(mid);
+                if (f_mid - f_lo).abs() > (f_hi - f_mid).abs() {
+                    (hi, f_hi) = (mid, f_mid);
+                } else {
+                    (lo, f_lo) = (mid, f_mid);
+                }
+            }
+            let fine = (f_hi - f_lo).abs();
+            eprintln!(
+                "shifted gap: N {mean:.0} N ± {spread:.1e}, largest step {:.1e} N → {:.1e} N \
+                 bisected",
+                coarse / mean,
+                fine / mean
+            );
+            assert!(fine < 1e-9 * mean);
+            assert!(spread < 1e-2);
+        }
+    }
+}
