@@ -4,8 +4,8 @@
 //! change by more than 0.5 % of the wheel load bisected down to 1e−12 m (a steep but continuous
 //! change shrinks with the interval; a jump does not). Also checked on every pose: no error, the
 //! load balanced to 1e−6 (the coupled strips: 1e−5, `balance_tolerance`), and an output slot keeps
-//! its patch (its reference point moves by less
-//! than the slot-matching distance from step to step).
+//! its patch (its reference point moves by less than the slot-matching distance from step to
+//! step).
 //!
 //! In release builds (`cargo test --release --test continuity`, run by `tests/run_all.sh`) the
 //! sweeps step 0.01 mm (the acceptance's resolution); debug builds step 0.1 mm.
