@@ -60,6 +60,24 @@ pub struct Balanced {
     pub residual: f64,
 }
 
+/// Secant slope through the last two points evaluated, (u, residual) [N/m^{3/2}] or [N/m].
+fn secant(recent: &[(f64, f64); 2]) -> f64 {
+    let [(u0, f0), (u1, f1)] = *recent;
+    (f1 - f0) / (u1 - u0)
+}
+
+impl Balanced {
+    /// The root `lowering`, the last point evaluated, with its `residual`.
+    fn evaluated_at(lowering: f64, residual: f64, recent: &[(f64, f64); 2]) -> Self {
+        Self {
+            lowering,
+            evaluated: true,
+            slope: secant(recent),
+            residual,
+        }
+    }
+}
+
 /// Where [`balance`] starts.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Guess {
@@ -139,10 +157,6 @@ pub fn balance<E>(
         *recent = [recent[1], (u_of(dz), f)];
         Ok(f)
     };
-    let secant = |recent: &[(f64, f64); 2]| {
-        let [(u0, f0), (u1, f1)] = *recent;
-        (f1 - f0) / (u1 - u0)
-    };
     let mut newton_slope = guess.slope.filter(|s| s.is_finite() && *s > 0.0);
     let mut newton_steps = 0;
     let (mut lo, mut f_lo) = (touch, -load);
@@ -152,12 +166,7 @@ pub fn balance<E>(
         let dz = touch + approach;
         let f = evaluate(dz, &mut recent)?;
         if f.abs() <= tolerance * load {
-            return Ok(Balanced {
-                lowering: dz,
-                evaluated: true,
-                slope: secant(&recent),
-                residual: f,
-            });
+            return Ok(Balanced::evaluated_at(dz, f, &recent));
         }
         if newton_steps > 0 {
             // After a Newton step: the secant through the last two points.
@@ -213,12 +222,7 @@ pub fn balance<E>(
     if f_hi.is_nan() || f_hi <= 0.0 {
         // No point above the load (the force stays below it up to MAX_APPROACH): the deepest
         // point tried is the answer the caller gets, as before.
-        return Ok(Balanced {
-            lowering: lo,
-            evaluated: true,
-            slope: secant(&recent),
-            residual: f_lo,
-        });
+        return Ok(Balanced::evaluated_at(lo, f_lo, &recent));
     }
     let mut bracket = Illinois::new((lo, f_lo), (hi, f_hi));
     let mut last = hi;
@@ -227,12 +231,7 @@ pub fn balance<E>(
         let f_mid = evaluate(mid, &mut recent)?;
         last = mid;
         if f_mid.abs() <= tolerance * load {
-            return Ok(Balanced {
-                lowering: mid,
-                evaluated: true,
-                slope: secant(&recent),
-                residual: f_mid,
-            });
+            return Ok(Balanced::evaluated_at(mid, f_mid, &recent));
         }
         bracket.update(mid, f_mid);
     }
