@@ -66,7 +66,40 @@ fn secant(recent: &[(f64, f64); 2]) -> f64 {
     (f1 - f0) / (u1 - u0)
 }
 
+/// A balanced lowering whose solution the caller holds, with the force there: where the next
+/// balance of the same wheel under a slightly changed load starts ([`Root::guess`]) — without
+/// evaluating it again, and with Newton's step on its slope.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Root {
+    /// The lowering [m].
+    pub lowering: f64,
+    /// The force there [N].
+    pub force: f64,
+    /// The force's slope there ([`Balanced::slope`]; NaN where not measured).
+    pub slope: f64,
+}
+
+impl Root {
+    /// Where the balance of `load` [N] starts from this root, first touch at `touch`.
+    pub fn guess(&self, touch: f64, load: f64) -> Guess {
+        Guess {
+            approach: self.lowering - touch,
+            residual: Some(self.force - load),
+            slope: Some(self.slope),
+        }
+    }
+}
+
 impl Balanced {
+    /// The root of a balance of `load` [N].
+    pub fn root(&self, load: f64) -> Root {
+        Root {
+            lowering: self.lowering,
+            force: self.residual + load,
+            slope: self.slope,
+        }
+    }
+
     /// The root `lowering`, the last point evaluated, with its `residual`.
     fn evaluated_at(lowering: f64, residual: f64, recent: &[(f64, f64); 2]) -> Self {
         Self {

@@ -12,7 +12,7 @@ use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::groups::{group_bounds, groups_at};
 use crate::geometry::search::{ContactPoint, WheelOnRail};
 use crate::tangential::fastsim::EllipticContact;
-use crate::wheelset::balance::{balance, ForceLaw, Guess};
+use crate::wheelset::balance::{balance, ForceLaw, Guess, Root};
 
 /// Fraction of a patch group's depth at which its reference point is taken (see
 /// [`evaluate_side`]): the force centroid of the interpenetration above this fraction of its
@@ -289,18 +289,16 @@ pub(super) fn hertz_side(
         (approach, if tangential { creep } else { 0.0 }, slope)
     });
     let level = merge_level(touch, q, ctx.e_star, ctx.settings.setup.wheel_radius);
-    // The previous pass's root, its residual and the force's slope there: the next pass starts
-    // from them without evaluating the root again, with Newton's step.
-    let mut guess = Guess {
+    let first = Guess {
         approach: first_approach,
         residual: None,
         slope: first_slope,
     };
-    let mut last_target = None;
+    // The previous pass's root: the next pass starts there, without evaluating it again, with
+    // Newton's step on its slope.
+    let mut root: Option<Root> = None;
     let creep = creep_passes(q, start_creep, |k, target| {
-        if let (Some(old), Some(f)) = (last_target, guess.residual) {
-            guess.residual = Some(f + old - target);
-        }
+        let guess = root.map_or(first, |r| r.guess(touch, target));
         // The first pass's target carries the creep estimate's error: balancing it beyond that
         // is wasted (the next pass starts from its root). Normal forces alone are the strip
         // models' starting point and the level of their strip layout, which a relative error of
@@ -323,14 +321,9 @@ pub(super) fn hertz_side(
                 )
             },
         )?;
-        guess = Guess {
-            approach: balanced.lowering - touch,
-            // The side's patches belong to the root when the pass ends (evaluated last, or
-            // evaluated again below).
-            residual: Some(balanced.residual),
-            slope: Some(balanced.slope),
-        };
-        last_target = Some(target);
+        // The side's patches belong to the root when the pass ends (evaluated last, or
+        // evaluated again below).
+        root = Some(balanced.root(target));
         if !tangential {
             if !balanced.evaluated {
                 evaluate_side(side, ctx, input, balanced.lowering, level, out, false)?;
@@ -345,7 +338,7 @@ pub(super) fn hertz_side(
         let tight = balanced.residual.abs() <= LOAD_TOLERANCE * target;
         Ok(Some((creep_upward(out), tight)))
     })?;
-    Ok((creep, guess.slope.unwrap_or(f64::NAN)))
+    Ok((creep, root.map_or(f64::NAN, |r| r.slope)))
 }
 
 /// The interpenetration level at which a wheel's multi-Hertzian patch groups are decided under

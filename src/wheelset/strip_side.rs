@@ -38,7 +38,7 @@ use crate::normal::{NormalModel, NormalParams, StripModel};
 use crate::tangential::fastsim::Creepage;
 use crate::tangential::patch::{strip_flexibilities, EquivalentEllipse, TangentialModel};
 use crate::tangential::strip_fastsim::TangentialStrip;
-use crate::wheelset::balance::{balance, ForceLaw, Guess, LOAD_TOLERANCE};
+use crate::wheelset::balance::{balance, ForceLaw, Guess, Root, LOAD_TOLERANCE};
 
 /// One non-elliptic patch: its plane, strips, model state, solution and weight.
 pub struct StripPatch {
@@ -157,10 +157,9 @@ impl StripPatch {
 pub struct StripSide {
     patches: Vec<StripPatch>,
     count: usize,
-    /// The last balanced lowering [m], the vertical force there [N] and the force's slope
-    /// dF/dz there [N/m] (NaN where not measured): the patches' solutions belong to it, so a
-    /// rebalance under a slightly changed force starts there without evaluating it again.
-    last_root: Option<(f64, f64, f64)>,
+    /// The last balanced lowering, to which the patches' solutions belong: a rebalance under a
+    /// slightly changed force starts there without evaluating it again (slope in dF/dz [N/m]).
+    last_root: Option<Root>,
 }
 
 /// Settings of the strip solve.
@@ -313,11 +312,7 @@ impl StripSide {
         dz: f64,
     ) -> f64 {
         let guess = match self.last_root {
-            Some((root, force, slope)) if root == dz => Guess {
-                approach: dz - touch,
-                residual: Some(force - target),
-                slope: Some(slope),
-            },
+            Some(root) if root.lowering == dz => root.guess(touch, target),
             _ => Guess {
                 approach: dz - touch,
                 ..Guess::default()
@@ -352,7 +347,7 @@ impl StripSide {
         if !balanced.evaluated {
             self.vertical_force(balanced.lowering, params, table);
         }
-        self.last_root = Some((balanced.lowering, balanced.residual + q, balanced.slope));
+        self.last_root = Some(balanced.root(q));
         balanced.lowering
     }
 }
