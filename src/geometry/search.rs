@@ -88,6 +88,11 @@ const WHEEL_NEWTON_TOLERANCE: f64 = 1e-9;
 /// converged [m] (`WheelOnRail::unimodal_lowest_point`; the gap error is second order in it).
 const LOWEST_POINT_TOLERANCE: f64 = 1e-12;
 
+/// Bound on the second Newton step below which the unimodal lowest-point search stops after
+/// one step [m] (`WheelOnRail::unimodal_lowest_point`): far below the load balance's resolution
+/// of the approach (1e−9 of ~1e−4 m).
+const ONE_STEP_ERROR: f64 = 1e-16;
+
 /// Fine samples per coarse interval of the scan. The search samples every `COARSE_STRIDE`-th
 /// point first and fills in an interval's fine samples only where a lower bound of the gap over
 /// it lies below the level asked for (see [`WheelOnRail::search`]). 12 (6 mm at the default
@@ -329,6 +334,10 @@ struct Prepared {
     roll: f64,
     /// Whether the yawed wheel has one lowest point per lateral (see `WheelOnRail::wheel_at`).
     single_lowest_point: bool,
+    /// tan ψ, sin²ψ / cos ψ and 1 / cos ψ of the yaw ψ (the lowest point's lead and lateral).
+    tan_yaw: f64,
+    sin_tan: f64,
+    inv_cos: f64,
 }
 
 /// One wheel on its rail: mounted geometry plus the scan buffer (allocated once).
@@ -889,6 +898,9 @@ impl WheelOnRail {
             cos_roll: pose.roll.cos(),
             roll: pose.roll,
             single_lowest_point: tan_sq * self.wheel_convexity < UNIMODAL_MARGIN,
+            tan_yaw: sin_yaw / cos_yaw,
+            sin_tan: sin_yaw * sin_yaw / cos_yaw,
+            inv_cos: 1.0 / cos_yaw,
         }
     }
 
@@ -1012,16 +1024,35 @@ impl WheelOnRail {
     /// at running yaw, so Newton's second step moves l by ~1e−15 m. One interval lookup and
     /// three cubic evaluations per lateral, where Newton in X took three full spline
     /// evaluations. The point is the same maximum (to rounding).
+    ///
+    /// At running yaw one Newton step suffices: from l0 = w / cos ψ the step is
+    /// s = (r z' sin²ψ / cos ψ − (l0 cos ψ − w)) / w'(l0), and the next one would be about
+    /// |w''| s² / (2 w') with w'' = −(3 z' z'' + r z‴) sin²ψ / cos ψ on the piece. Where that
+    /// is below [`ONE_STEP_ERROR`] (s ~ 1e−8 m at 1 mrad: the bound is ~1e−20 m) the point at
+    /// l0 + s is taken from the piece's cubic without a second step; elsewhere the safeguarded
+    /// iteration runs to [`LOWEST_POINT_TOLERANCE`].
     fn unimodal_lowest_point(&self, w: f64, p: &Prepared) -> WheelPoint {
         let r0 = self.setup.wheel_radius;
         let offset = self.setup.taping_line_offset();
-        let (sin, cos) = (p.sin_yaw, p.cos_yaw);
-        let sin_tan = sin * sin / cos;
-        let spread = self.lead_bracket(p) * (sin / cos).abs();
-        let mut l = w / cos;
-        let (mut lo, mut hi) = (l - spread, l + spread);
+        let (sin, cos, sin_tan) = (p.sin_yaw, p.cos_yaw, p.sin_tan);
+        let mut l = w * p.inv_cos;
         let mut piece = self.wheel.piece_at(l - offset);
         let mut at = piece.eval(l - offset);
+        {
+            let (z, dz, d2z) = at;
+            let r = r0 + z;
+            let rate = cos - (dz * dz + r * d2z) * sin_tan;
+            let step = (r * dz * sin_tan - (l * cos - w)) / rate;
+            let bend = (3.0 * dz * d2z + r * piece.third()) * sin_tan;
+            if rate > 0.0 && (bend * step * step).abs() <= 2.0 * rate * ONE_STEP_ERROR {
+                let next = l + step;
+                if piece.contains(next - offset) {
+                    return self.yawed_point(next, piece.eval(next - offset), p);
+                }
+            }
+        }
+        let spread = self.lead_bracket(p) * (sin / cos).abs();
+        let (mut lo, mut hi) = (l - spread, l + spread);
         for _ in 0..WHEEL_NEWTON_STEPS {
             let (z, dz, d2z) = at;
             let r = r0 + z;
@@ -1054,20 +1085,28 @@ impl WheelOnRail {
             }
             at = piece.eval(l - offset);
         }
+        self.yawed_point(l, at, p)
+    }
+
+    /// The yawed wheel's lowest point at axial coordinate `l` where the profile's value, slope
+    /// and second derivative are `at` ([`WheelOnRail::unimodal_lowest_point`]): its lead
+    /// d = −r z' tan ψ, height √(r² − d²) and slope.
+    fn yawed_point(&self, l: f64, at: (f64, f64, f64), p: &Prepared) -> WheelPoint {
         let (z_w, dz_w, _) = at;
-        let r = r0 + z_w;
-        let d = -r * dz_w * sin / cos;
+        let r = self.setup.wheel_radius + z_w;
+        let d = -r * dz_w * p.tan_yaw;
         let z = (r * r - d * d).max(0.0).sqrt();
+        // (r z' cos ψ − d sin ψ) / z with d = −r z' tan ψ.
         let slope = if z > 0.0 {
-            (r * dz_w * cos - d * sin) / z
+            r * dz_w * p.inv_cos / z
         } else {
             0.0
         };
         WheelPoint {
             z,
             slope,
-            x: d * cos - l * sin,
-            y_wheel: l - offset,
+            x: d * p.cos_yaw - l * p.sin_yaw,
+            y_wheel: l - self.setup.taping_line_offset(),
             radius: r,
         }
     }

@@ -502,6 +502,12 @@ impl SplinePiece {
             2.0 * c + 6.0 * d * t,
         )
     }
+
+    /// Third derivative (constant over the piece).
+    #[inline]
+    pub fn third(&self) -> f64 {
+        6.0 * self.coef[3]
+    }
 }
 
 /// Real roots of a t² + b t + c (a linear or constant polynomial handled; `None` where there is
