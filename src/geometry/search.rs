@@ -93,6 +93,11 @@ const LOWEST_POINT_TOLERANCE: f64 = 1e-12;
 /// of the approach (1e−9 of ~1e−4 m).
 const ONE_STEP_ERROR: f64 = 1e-16;
 
+/// Largest u = (z' tan ψ)² for which the yawed lowest point's roots √(1 − u) and 1/√(1 − u)
+/// are taken from their series (`WheelOnRail::yawed_point`): the first neglected terms,
+/// 7u⁵/256 and 63u⁵/256, stay below 3e−16.
+const SERIES_LIMIT: f64 = 1e-3;
+
 /// Fine samples per coarse interval of the scan. The search samples every `COARSE_STRIDE`-th
 /// point first and fills in an interval's fine samples only where a lower bound of the gap over
 /// it lies below the level asked for (see [`WheelOnRail::search`]). 12 (6 mm at the default
@@ -1039,12 +1044,14 @@ impl WheelOnRail {
         let mut piece = self.wheel.piece_at(l - offset);
         let mut at = piece.eval(l - offset);
         {
+            // w'(l0) = cos ψ (1 − k): 1/w' = (1 + k + k²)/cos ψ within k³/(1 − k) of it.
             let (z, dz, d2z) = at;
             let r = r0 + z;
-            let rate = cos - (dz * dz + r * d2z) * sin_tan;
-            let step = (r * dz * sin_tan - (l * cos - w)) / rate;
-            let bend = (3.0 * dz * d2z + r * piece.third()) * sin_tan;
-            if rate > 0.0 && (bend * step * step).abs() <= 2.0 * rate * ONE_STEP_ERROR {
+            let k = (dz * dz + r * d2z) * sin_tan * p.inv_cos;
+            let step = (r * dz * sin_tan - (l * cos - w)) * p.inv_cos * (1.0 + k * (1.0 + k));
+            let bend = (3.0 * dz * d2z + r * piece.third()) * sin_tan * p.inv_cos;
+            let neglected = 0.5 * (bend * step * step).abs() + 2.0 * (step * k * k * k).abs();
+            if k.abs() <= 0.5 && neglected <= ONE_STEP_ERROR {
                 let next = l + step;
                 if piece.contains(next - offset) {
                     return self.yawed_point(next, piece.eval(next - offset), p);
@@ -1091,17 +1098,28 @@ impl WheelOnRail {
     /// The yawed wheel's lowest point at axial coordinate `l` where the profile's value, slope
     /// and second derivative are `at` ([`WheelOnRail::unimodal_lowest_point`]): its lead
     /// d = −r z' tan ψ, height √(r² − d²) and slope.
+    ///
+    /// With u = (z' tan ψ)², the height is r √(1 − u) and the slope
+    /// (r z' cos ψ − d sin ψ)/height = z' / (cos ψ √(1 − u)); for u ≤ [`SERIES_LIMIT`] (a yaw
+    /// of ≲ 12 mrad on S1002's flange) both roots are their binomial series to u⁴ (remainders
+    /// below 3e−16 of them), elsewhere a square root and a division.
     fn yawed_point(&self, l: f64, at: (f64, f64, f64), p: &Prepared) -> WheelPoint {
         let (z_w, dz_w, _) = at;
         let r = self.setup.wheel_radius + z_w;
         let d = -r * dz_w * p.tan_yaw;
-        let z = (r * r - d * d).max(0.0).sqrt();
-        // (r z' cos ψ − d sin ψ) / z with d = −r z' tan ψ.
-        let slope = if z > 0.0 {
-            r * dz_w * p.inv_cos / z
+        let lean = dz_w * p.tan_yaw;
+        let u = lean * lean;
+        let (root, inverse_root) = if u <= SERIES_LIMIT {
+            (
+                1.0 - u * (0.5 + u * (0.125 + u * (0.0625 + u * (5.0 / 128.0)))),
+                1.0 + u * (0.5 + u * (0.375 + u * (0.3125 + u * (35.0 / 128.0)))),
+            )
         } else {
-            0.0
+            let root = (1.0 - u).max(0.0).sqrt();
+            (root, if root > 0.0 { 1.0 / root } else { 0.0 })
         };
+        let z = r.max(0.0) * root;
+        let slope = dz_w * p.inv_cos * inverse_root;
         WheelPoint {
             z,
             slope,

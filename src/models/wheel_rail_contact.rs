@@ -397,6 +397,7 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
             TangentialModel::from_code,
         )?,
         planar_patch: values.boolean(var::planarPatch),
+        reuse_tangential: true,
     })
 }
 

@@ -405,8 +405,9 @@ impl CubicSpline {
 
     /// The cubic piece that [`CubicSpline::eval`] uses at `y` (the linear continuation outside
     /// the knots): evaluated anywhere in its interval, [`SplinePiece::eval`] gives what `eval`
-    /// gives, without the interval lookup. `y` must not be NaN.
-    #[inline]
+    /// gives, without the interval lookup. `y` must not be NaN. (Always inlined: returned
+    /// through memory, the piece reaches its caller late.)
+    #[inline(always)]
     pub fn piece_at(&self, y: f64) -> SplinePiece {
         let n = self.knots.len();
         let y0 = self.knots[0];

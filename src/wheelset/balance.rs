@@ -446,35 +446,56 @@ pub(super) fn creep_upward(out: &SideResult) -> f64 {
     -out.force[2] - normal
 }
 
+/// What a creep pass found ([`creep_passes`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct CreepPass {
+    /// The creep forces' vertical component on the wheel, upwards positive [N].
+    pub creep: f64,
+    /// Whether the pass's load balance met [`LOAD_TOLERANCE`].
+    pub tight: bool,
+    /// Whether its tangential solution was the previous pass's, scaled
+    /// ([`crate::wheelset::reuse`]): an approximation of the creep map, kept out of the fixed
+    /// point's history.
+    pub reused: bool,
+}
+
 /// The prescribed wheel load `q` [N] is carried by the normal forces and the creep forces'
 /// vertical component together. `pass(k, target)` balances the normal forces against `target`
-/// = q less the current estimate of that component, solves the tangential problem there and
-/// returns the component it finds and whether its balance met [`LOAD_TOLERANCE`] (`None`: no
+/// = q less the current estimate of that component, solves the tangential problem there (or
+/// reuses the last solution, scaled) and returns what it found ([`CreepPass`]; `None`: no
 /// tangential problem, stop). The estimate starts from `start` (zero, or the previous step's)
 /// and is updated by [`CreepFixedPoint`] until it changes by at most [`CREEP_TOLERANCE`] of q in
 /// a pass balanced to [`LOAD_TOLERANCE`], or for [`CREEP_PASSES`] passes. (A first pass may
 /// balance only to [`CREEP_TOLERANCE`]: its target carries the estimate's error, and the next
-/// pass starts from its root.) Returns the last component found (`None` if no pass solved a
-/// tangential problem).
+/// pass starts from its root.) A reused pass that has not converged hands its component on as
+/// the next estimate without entering [`CreepFixedPoint`]'s secant and bracket, which hold the
+/// solved passes only (a scaled solution is a slightly different map: mixed, the two can leave
+/// a bracket around their step, ~1e−6 of q in flange contact). Returns the last component found
+/// (`None` if no pass solved a tangential problem).
 pub(super) fn creep_passes(
     q: f64,
     start: f64,
-    mut pass: impl FnMut(usize, f64) -> Result<Option<(f64, bool)>, WheelsetError>,
+    mut pass: impl FnMut(usize, f64) -> Result<Option<CreepPass>, WheelsetError>,
 ) -> Result<Option<f64>, WheelsetError> {
     let mut creep = if start.is_finite() { start } else { 0.0 };
     let mut fixed_point = CreepFixedPoint::default();
     let mut found = None;
     for k in 0..CREEP_PASSES {
         let target = (q - creep).max(MIN_NORMAL_SHARE * q);
-        let Some((new_creep, tight)) = pass(k, target)? else {
+        let Some(found_here) = pass(k, target)? else {
             break;
         };
+        let new_creep = found_here.creep;
         found = Some(new_creep);
         let converged = (new_creep - creep).abs() <= CREEP_TOLERANCE * q;
-        if k + 1 == CREEP_PASSES || (converged && tight) {
+        if k + 1 == CREEP_PASSES || (converged && found_here.tight) {
             break;
         }
-        creep = fixed_point.next(creep, new_creep);
+        creep = if found_here.reused {
+            new_creep
+        } else {
+            fixed_point.next(creep, new_creep)
+        };
     }
     Ok(found)
 }

@@ -1,8 +1,11 @@
 //! The multi-Hertzian side of a wheel: one Hertz patch per patch group, FASTSIM on each, the
 //! prescribed-load iteration.
 
-use super::balance::{creep_passes, creep_upward, WarmStart, CREEP_TOLERANCE, LOAD_TOLERANCE};
+use super::balance::{
+    creep_passes, creep_upward, CreepPass, WarmStart, CREEP_TOLERANCE, LOAD_TOLERANCE,
+};
 use super::kinematics::{creepages_at, planar_tangential, point_position};
+use super::reuse::{PatchTangential, Tangential, TangentialMemo};
 use super::{
     store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput,
     LOAD_ITERATIONS,
@@ -22,8 +25,8 @@ use crate::wheelset::balance::{balance, ForceLaw, Guess, Root};
 /// spread-based ellipse; tests/manchester.rs).
 pub(super) const VIRTUAL_FRACTION: f64 = 0.8;
 
-/// Evaluates one wheel lowered by `dz` (with FASTSIM per patch if `tangential`, else normal
-/// forces only); returns the vertical force of the rail on the wheel, upwards positive [N].
+/// Evaluates one wheel lowered by `dz` (normal forces, and the tangential problem per patch as
+/// `tangential` says: FASTSIM, or a recorded solution scaled); returns the vertical force of the rail on the wheel, upwards positive [N].
 ///
 /// Multi-Hertzian: every patch group at the level dz ([`crate::geometry::groups`]) is one Hertz
 /// patch, described by integrals of its interpenetration between the ridges that separate it
@@ -55,7 +58,7 @@ pub(super) fn evaluate_side(
     dz: f64,
     merge_level: f64,
     out: &mut SideResult,
-    tangential: bool,
+    tangential: Tangential,
 ) -> Result<f64, InputError> {
     *out = SideResult {
         z: dz,
@@ -97,15 +100,15 @@ pub(super) fn evaluate_side(
 }
 
 /// Writes the multi-Hertzian patches of the side's last normal solution ([`evaluate_side`]) to
-/// `out` (lowering `out.z`), with FASTSIM per patch if `tangential`; returns the vertical force
-/// of the rail on the wheel, upwards positive [N]. The tangential problem at a lowering whose
-/// normal solution is at hand needs no new one.
+/// `out` (lowering `out.z`), with the tangential problem per patch as `tangential` says;
+/// returns the vertical force of the rail on the wheel, upwards positive [N]. The tangential
+/// problem at a lowering whose normal solution is at hand needs no new one.
 pub(super) fn complete_ellipses(
     side: &mut Side,
     ctx: &Context,
     input: &WheelsetInput,
     out: &mut SideResult,
-    tangential: bool,
+    mut tangential: Tangential,
 ) -> Result<f64, InputError> {
     *out = SideResult {
         z: out.z,
@@ -114,7 +117,16 @@ pub(super) fn complete_ellipses(
     let mut upward = 0.0;
     for k in 0..side.n_ellipses {
         let (reference, patch, weight) = side.ellipses[k];
-        upward += add_patch(side, ctx, input, &reference, patch, weight, out, tangential)?;
+        upward += add_patch(
+            side,
+            ctx,
+            input,
+            &reference,
+            patch,
+            weight,
+            out,
+            &mut tangential,
+        )?;
     }
     Ok(upward)
 }
@@ -183,8 +195,9 @@ pub(super) fn group_ellipse(
 
 /// Completes a patch whose normal solution is in `result` (normal force, size, approach): the
 /// reference point's position and angle, creepages, FASTSIM on the patch's (equivalent)
-/// ellipse; stores it with its `weight` in the next entry of `out.groups`, adds its force to
-/// `out.force` (track axes) and returns its upward force on the wheel [N].
+/// ellipse (or the recorded solution scaled, [`Tangential::Reuse`]); stores it with its
+/// `weight` in the next entry of `out.groups`, adds its force to `out.force` (track axes) and
+/// returns its upward force on the wheel [N].
 #[allow(clippy::too_many_arguments)]
 pub(super) fn add_patch(
     side: &mut Side,
@@ -194,7 +207,7 @@ pub(super) fn add_patch(
     mut result: PatchResult,
     weight: f64,
     out: &mut SideResult,
-    tangential: bool,
+    tangential: &mut Tangential,
 ) -> Result<f64, InputError> {
     if out.n_groups >= MAX_GROUPS {
         return Ok(0.0);
@@ -215,16 +228,42 @@ pub(super) fn add_patch(
         mu: ctx.material.friction,
     };
     side.last_y_rail[out.n_groups] = reference.y_rail;
-    if !tangential {
-        return Ok(store_patch(
-            side.sigma,
-            result,
-            weight,
-            nalgebra::Vector3::zeros(),
-            out,
-        ));
-    }
-    let t = side.fastsim[out.n_groups].solve(&contact, &creepage, speed)?;
+    let recorded = match tangential {
+        Tangential::None => {
+            return Ok(store_patch(
+                side.sigma,
+                result,
+                weight,
+                nalgebra::Vector3::zeros(),
+                out,
+            ))
+        }
+        Tangential::Reuse(memo) => {
+            memo.scaled(out.n_groups, weight, result.fn_, ctx.material.friction)
+        }
+        Tangential::Solve(_) => None,
+    };
+    let t = match recorded {
+        Some(t) => t,
+        None => {
+            let t = side.fastsim[out.n_groups].solve(&contact, &creepage, speed)?;
+            let solved = PatchTangential {
+                normal_force: result.fn_,
+                weight,
+                fx: t.fx,
+                fy: t.fy,
+                mz: t.mz,
+                adhesion_fraction: t.adhesion_fraction,
+                frictional_power: t.frictional_power,
+                max_traction: t.max_traction,
+                tangential: nalgebra::Vector3::zeros(),
+            };
+            if let Tangential::Solve(memo) = tangential {
+                memo.push(solved);
+            }
+            solved
+        }
+    };
     result.fx = t.fx;
     result.fy = t.fy;
     result.mz = t.mz;
@@ -257,8 +296,14 @@ pub(super) fn hertz_side(
     out: &mut SideResult,
     tangential: bool,
 ) -> Result<(Option<f64>, f64), WheelsetError> {
+    let mut memo = TangentialMemo::default();
     let Some(q) = load else {
-        evaluate_side(side, ctx, input, z, z, out, tangential)?;
+        let mode = if tangential {
+            Tangential::Solve(&mut memo)
+        } else {
+            Tangential::None
+        };
+        evaluate_side(side, ctx, input, z, z, out, mode)?;
         return Ok((None, f64::NAN));
     };
     if q == 0.0 {
@@ -317,26 +362,46 @@ pub(super) fn hertz_side(
             ForceLaw::Hertzian,
             |dz| {
                 Ok::<_, InputError>(
-                    evaluate_side(side, ctx, input, dz, level, out, false)? - target,
+                    evaluate_side(side, ctx, input, dz, level, out, Tangential::None)? - target,
                 )
             },
         )?;
         // The side's patches belong to the root when the pass ends (evaluated last, or
         // evaluated again below).
         root = Some(balanced.root(target));
+        if !balanced.evaluated {
+            evaluate_side(
+                side,
+                ctx,
+                input,
+                balanced.lowering,
+                level,
+                out,
+                Tangential::None,
+            )?;
+        }
         if !tangential {
-            if !balanced.evaluated {
-                evaluate_side(side, ctx, input, balanced.lowering, level, out, false)?;
-            }
             return Ok(None);
         }
-        if balanced.evaluated {
-            complete_ellipses(side, ctx, input, out, true)?;
+        // The second pass, when its target moved by little, keeps the first pass's tangential
+        // solution, scaled ([`crate::wheelset::reuse`]).
+        let reused = k == 1
+            && ctx.settings.reuse_tangential
+            && side.n_ellipses == memo.len()
+            && memo.take(target, q);
+        let mode = if reused {
+            Tangential::Reuse(&memo)
         } else {
-            evaluate_side(side, ctx, input, balanced.lowering, level, out, true)?;
-        }
+            memo.start(target);
+            Tangential::Solve(&mut memo)
+        };
+        complete_ellipses(side, ctx, input, out, mode)?;
         let tight = balanced.residual.abs() <= LOAD_TOLERANCE * target;
-        Ok(Some((creep_upward(out), tight)))
+        Ok(Some(CreepPass {
+            creep: creep_upward(out),
+            tight,
+            reused,
+        }))
     })?;
     Ok((creep, root.map_or(f64::NAN, |r| r.slope)))
 }

@@ -37,6 +37,7 @@ pub mod balance;
 pub mod conicity;
 mod hertz_side;
 mod kinematics;
+mod reuse;
 mod slots;
 pub mod strip_side;
 pub mod validity;
@@ -101,6 +102,10 @@ pub struct WheelsetSettings {
     /// (as the half-space theory assumes). `false`: each strip its own angle, rolling radius
     /// and creepages (docs/theory.md §5.8).
     pub planar_patch: bool,
+    /// A prescribed-load creep pass whose normal-force target moved by at most 1e−5 of the
+    /// load since the last tangential solve keeps that solution, scaled to its normal forces
+    /// (docs/theory.md §8.3). `false`: every pass solves the tangential problem again.
+    pub reuse_tangential: bool,
 }
 
 impl WheelsetSettings {
@@ -118,6 +123,7 @@ impl WheelsetSettings {
             kp_shape_correction: false,
             tangential: TangentialModel::ModelDefault,
             planar_patch: false,
+            reuse_tangential: true,
         }
     }
 }

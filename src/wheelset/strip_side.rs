@@ -25,8 +25,9 @@
 
 use nalgebra::Vector3;
 
-use super::balance::{creep_passes, creep_upward};
+use super::balance::{creep_passes, creep_upward, CreepPass};
 use super::kinematics::{creepages_at, point_position, tangential_in_axes, NonPlanar};
+use super::reuse::{PatchTangential, Tangential, TangentialMemo};
 use super::{store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput};
 use crate::error::InputError;
 use crate::geometry::groups::{group_bounds, groups_at, MAX_GROUPS};
@@ -355,13 +356,15 @@ impl StripSide {
 /// Writes the outputs of the strip patches of `side` (solved at lowering `dz`): patch figures
 /// from the strips, reference point at the patch's force centroid (interpolated between strips),
 /// tangential forces by the strip solvers of [`crate::tangential::strip_fastsim`] (planar or non-planar,
-/// flexibilities per [`TangentialModel`]). Returns the upward force on the wheel [N].
+/// flexibilities per [`TangentialModel`]; or a recorded solution scaled, as `tangential` says).
+/// Returns the upward force on the wheel [N].
 pub(super) fn evaluate_strips(
     side: &mut Side,
     ctx: &Context,
     input: &WheelsetInput,
     dz: f64,
     out: &mut SideResult,
+    mut tangential: Tangential,
 ) -> Result<f64, InputError> {
     *out = SideResult {
         z: dz,
@@ -381,7 +384,8 @@ pub(super) fn evaluate_strips(
         if !summary.in_contact() {
             continue;
         }
-        match strip_patch_result(side, ctx, input, patch, &summary, dz, out.n_groups) {
+        let slot = out.n_groups;
+        match strip_patch_result(side, ctx, input, patch, &summary, dz, slot, &mut tangential) {
             Ok((result, tangential)) => {
                 side.strip_of_group[out.n_groups] = Some(index);
                 upward += store_patch(side.sigma, result, patch.weight, tangential, out);
@@ -397,7 +401,10 @@ pub(super) fn evaluate_strips(
     Ok(upward)
 }
 
-/// Normal and tangential result of one strip patch, and its tangential force in track axes.
+/// Normal and tangential result of one strip patch (in output slot `slot`), and its tangential
+/// force in track axes; the tangential problem solved or taken from a record as `tangential`
+/// says ([`Tangential::None`] solves it, unrecorded).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn strip_patch_result(
     side: &mut Side,
     ctx: &Context,
@@ -406,6 +413,7 @@ pub(super) fn strip_patch_result(
     summary: &crate::normal::strips::PatchSummary,
     dz: f64,
     slot: usize,
+    tangential: &mut Tangential,
 ) -> Result<(PatchResult, Vector3<f64>), InputError> {
     let sc = summary.s_centroid;
     let at = |v: &[f64]| patch.interpolate(v, sc);
@@ -421,19 +429,87 @@ pub(super) fn strip_patch_result(
     };
     let gamma = reference.contact_angle;
     let (creepage, speed) = creepages_at(input, side.sigma, &reference, gamma);
-    let settings = ctx.settings;
     let equivalent = EquivalentEllipse::of(
         summary,
         ctx.shear_modulus,
         ctx.material.poisson_ratio,
         ctx.material.friction,
     )?;
+    let mu = ctx.material.friction;
+    let recorded = match tangential {
+        Tangential::Reuse(memo) => memo.scaled(slot, patch.weight, summary.normal_force, mu),
+        _ => None,
+    };
+    let t = match recorded {
+        Some(t) => t,
+        None => {
+            let at_reference = (&reference, creepage, speed);
+            let t = solve_strip_tangential(
+                side,
+                ctx,
+                input,
+                patch,
+                summary,
+                slot,
+                at_reference,
+                &equivalent,
+            )?;
+            if let Tangential::Solve(memo) = tangential {
+                memo.push(t);
+            }
+            t
+        }
+    };
+    let result = PatchResult {
+        fn_: summary.normal_force,
+        fx: t.fx,
+        fy: t.fy,
+        mz: t.mz,
+        area: summary.area,
+        pmax: summary.pmax,
+        a: equivalent.contact.a,
+        b: equivalent.contact.b,
+        length: summary.length,
+        width: summary.width,
+        y_rail: reference.y_rail,
+        position: point_position(side.sigma, &reference, input.yaw, input.roll).into(),
+        contact_angle: gamma,
+        rolling_radius: reference.rolling_radius,
+        penetration: patch.approach(dz),
+        creepage,
+        adhesion_fraction: t.adhesion_fraction,
+        frictional_power: t.frictional_power,
+        max_traction: t.max_traction,
+        curv_a: reference.curv_a,
+        curv_b: reference.curv_b,
+        weight: 1.0,
+    };
+    Ok((result, t.tangential))
+}
+
+/// The tangential problem of one strip patch (in slot `slot`; its reference point with the
+/// creepages and speed there, its equivalent ellipse): the strip solver of the
+/// `tangentialModel`, planar or non-planar.
+#[allow(clippy::too_many_arguments)]
+fn solve_strip_tangential(
+    side: &mut Side,
+    ctx: &Context,
+    input: &WheelsetInput,
+    patch: &StripPatch,
+    summary: &crate::normal::strips::PatchSummary,
+    slot: usize,
+    (reference, creepage, speed): (&ContactPoint, Creepage, f64),
+    equivalent: &EquivalentEllipse,
+) -> Result<PatchTangential, InputError> {
+    let settings = ctx.settings;
+    let sc = summary.s_centroid;
+    let gamma = reference.contact_angle;
     let source = settings
         .tangential
         .flexibility_source(settings.normal_model);
     let b_floor = ctx.strips.params.b_floor();
     let non_planar = (!settings.planar_patch)
-        .then(|| NonPlanar::new(input, side.sigma, settings.setup.wheel_radius, &reference));
+        .then(|| NonPlanar::new(input, side.sigma, settings.setup.wheel_radius, reference));
     let n = patch.geom.len();
     // The strips' x is measured from the reference point (its yaw lead x_ref), where the
     // patch's creepages hold: the spin's lateral slip φ·x is then zero there, as in Kalker's
@@ -469,7 +545,7 @@ pub(super) fn strip_patch_result(
                 j,
                 b_floor,
                 ctx.table,
-                &equivalent,
+                equivalent,
                 &strip.creepage,
             )?;
         }
@@ -478,7 +554,7 @@ pub(super) fn strip_patch_result(
     let solver = &mut side.strip_fastsim[slot];
     let mu = ctx.material.friction;
     let t = if settings.tangential == TangentialModel::Fastrip {
-        solver.solve_fastrip(&side.tangential_strips[..n], &equivalent, speed)
+        solver.solve_fastrip(&side.tangential_strips[..n], equivalent, speed)
     } else {
         solver.solve(&side.tangential_strips[..n], mu, speed)
     };
@@ -500,31 +576,17 @@ pub(super) fn strip_patch_result(
         // cos(γ_j − γ).
         fy_patch += fy * (cos_j * cos_g + sin_j * sin_g);
     }
-    let result = PatchResult {
-        fn_: summary.normal_force,
+    Ok(PatchTangential {
+        normal_force: summary.normal_force,
+        weight: patch.weight,
         fx: t.fx,
         fy: fy_patch,
         mz: t.mz,
-        area: summary.area,
-        pmax: summary.pmax,
-        a: equivalent.contact.a,
-        b: equivalent.contact.b,
-        length: summary.length,
-        width: summary.width,
-        y_rail: reference.y_rail,
-        position: point_position(side.sigma, &reference, input.yaw, input.roll).into(),
-        contact_angle: gamma,
-        rolling_radius: reference.rolling_radius,
-        penetration: patch.approach(dz),
-        creepage,
         adhesion_fraction: t.adhesion_fraction,
         frictional_power: t.frictional_power,
         max_traction: t.max_traction,
-        curv_a: reference.curv_a,
-        curv_b: reference.curv_b,
-        weight: 1.0,
-    };
-    Ok((result, tangential))
+        tangential,
+    })
 }
 
 /// Replaces the Hertz solution in `out` by the side's strip model: `load` prescribed (`out.z`,
@@ -547,9 +609,12 @@ pub(super) fn solve_strips(
     }
     let table = ctx.table;
     let mut dz = out.z;
+    let mut memo = TangentialMemo::default();
+    let q = load.unwrap_or(0.0);
     // One pass: the strip layout and solve (the first, or without a load) or its re-balance to
     // `target`, then the tangential problem at the new lowering; returns the creep forces'
-    // vertical component. The layout follows from the multi-Hertzian lowering `out.z` alone.
+    // vertical component and whether it reused the last pass's tangential solution. The layout
+    // follows from the multi-Hertzian lowering `out.z` alone.
     let mut pass = |side: &mut Side, k: usize, target: Option<f64>| {
         let mut strips = side.strips.take().expect("strip buffers are present");
         dz = match target {
@@ -565,13 +630,28 @@ pub(super) fn solve_strips(
             ),
         };
         side.strips = Some(strips);
-        evaluate_strips(side, ctx, input, dz, out)?;
-        Ok::<_, WheelsetError>(creep_upward(out))
+        // The second pass, when its target moved by little, keeps the first pass's tangential
+        // solution, scaled ([`crate::wheelset::reuse`]).
+        let target = target.unwrap_or(f64::NAN);
+        let reused = k == 1 && ctx.settings.reuse_tangential && memo.take(target, q);
+        let mode = if reused {
+            Tangential::Reuse(&memo)
+        } else {
+            memo.start(target);
+            Tangential::Solve(&mut memo)
+        };
+        evaluate_strips(side, ctx, input, dz, out, mode)?;
+        Ok::<_, WheelsetError>((creep_upward(out), reused))
     };
     match load {
         None => pass(side, 0, None).map(|_| None),
         Some(q) => creep_passes(q, creep, |k, target| {
-            Ok(Some((pass(side, k, Some(target))?, true)))
+            let (creep, reused) = pass(side, k, Some(target))?;
+            Ok(Some(CreepPass {
+                creep,
+                tight: true,
+                reused,
+            }))
         }),
     }
 }

@@ -541,7 +541,7 @@ impl Profile {
 
     /// The spline piece that [`Profile::eval`] uses at y [m] (not NaN): cheap evaluations
     /// nearby without the interval lookup.
-    #[inline]
+    #[inline(always)]
     pub fn piece_at(&self, y: f64) -> crate::numeric::spline::SplinePiece {
         self.spline.piece_at(y)
     }

@@ -1,0 +1,227 @@
+//! A creep pass's tangential solution, carried into the next pass of the same step when the
+//! normal forces moved by little (docs/theory.md §8.3).
+//!
+//! A prescribed wheel load is carried by the normal forces and the creep forces' vertical
+//! component together ([`crate::wheelset::balance::creep_passes`]): the first pass balances the
+//! normal forces against Q less the predicted component, solves the tangential problem and finds
+//! the component; the next pass balances the normal forces against Q less that one. On a moving
+//! wheelset the two targets differ by ~1e−6 of Q (the component's prediction from the last steps
+//! misses by that much: FASTSIM's force is only piecewise smooth in the creepages, as elements
+//! switch between adhesion and slip), so the second pass's normal forces differ from the first's
+//! by that much, and solving the tangential problem again would change its forces by at most
+//! ~μ/3 of that (see below).
+//!
+//! Where the targets differ by at most [`REUSE_WINDOW`] of Q, the second pass keeps the first
+//! pass's tangential solution, scaled to each patch's new normal force N by the power law of its
+//! similarity: on an elliptic patch (a, b ∝ N^{1/3}, p0 ∝ N^{1/3}, Kalker's flexibility ∝ a)
+//! the normalised creepages ξ, η scale as N^{−1/3} and the spin as N^0, so at fixed creepages a
+//! force goes as N^α with α from 2/3 (the linear theory) to 1 (full slip): α is taken from the
+//! patch's saturation |F|/(μN) ([`force_exponent`]), the spin moment (one more length) scales by
+//! N^{α+1/3}, the largest traction (μ p0) by N^{1/3}, the frictional power as the forces; the
+//! adhesion fraction is kept. The contact point, angle and creepages are the new pass's own (the
+//! patch's track-axes force follows its new angle). What the law leaves out — the force's
+//! direction turning as the saturation changes, the spin's share, the patch's shape and point
+//! moving with the lowering — is of the order of the normal forces' relative change times the
+//! force: over the hunting wheelset of docs/performance.md the wheel forces differ from solving
+//! again by at most 1.0e−7 of Q for Hertz patches and 7–8e−8 for strip FASTSIM and FaStrip
+//! (`tests/warm_start.rs`), the order of the creep iteration's own tolerance (1e−7 of Q). Only
+//! the second pass reuses (a reused pass that does not converge is followed by solved ones,
+//! [`crate::wheelset::balance::creep_passes`]).
+
+use nalgebra::Vector3;
+
+use crate::geometry::groups::MAX_GROUPS;
+
+/// Largest change of a wheel's normal-force target between two creep passes, relative to the
+/// wheel load, across which the later pass reuses the earlier pass's tangential solution
+/// (scaled) instead of solving the tangential problem again.
+pub(super) const REUSE_WINDOW: f64 = 3e-6;
+
+/// The tangential solution of one patch, at the normal force it was solved for.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct PatchTangential {
+    /// Normal force the tangential problem was solved at [N] (unweighted).
+    pub normal_force: f64,
+    /// The patch group's weight (identifies the patch within a step's layout).
+    pub weight: f64,
+    pub fx: f64,
+    pub fy: f64,
+    pub mz: f64,
+    pub adhesion_fraction: f64,
+    pub frictional_power: f64,
+    pub max_traction: f64,
+    /// The tangential force in track axes [N] (unweighted; strip patches, whose strips have
+    /// their own angles).
+    pub tangential: Vector3<f64>,
+}
+
+impl PatchTangential {
+    /// The solution scaled to the normal force `normal_force` at friction coefficient `mu`
+    /// (see the module's text); `None` where either force is not positive.
+    pub fn scaled(&self, normal_force: f64, mu: f64) -> Option<Self> {
+        let ratio = normal_force / self.normal_force;
+        if !(ratio.is_finite() && ratio > 0.0) {
+            return None;
+        }
+        let exponent = force_exponent(self.fx.hypot(self.fy) / (mu * self.normal_force));
+        let force = ratio.powf(exponent);
+        Some(Self {
+            normal_force,
+            weight: self.weight,
+            fx: self.fx * force,
+            fy: self.fy * force,
+            mz: self.mz * ratio.powf(exponent + 1.0 / 3.0),
+            adhesion_fraction: self.adhesion_fraction,
+            frictional_power: self.frictional_power * force,
+            max_traction: self.max_traction * ratio.cbrt(),
+            tangential: self.tangential * force,
+        })
+    }
+}
+
+/// The exponent α of F ∝ N^α at fixed creepages for a patch whose creep force uses the share
+/// `saturation` = |F|/(μN) of its traction bound: with the saturation curve
+/// F/(μN) = 1 − (1 − x/3)³ (x ≤ 3) of the normalised creepage x ∝ N^{−1/3} (Z. Y. Shen,
+/// J. K. Hedrick, J. A. Elkins, Proc. 8th IAVSD Symposium, 1983), α = 1 − t²/(1 + t + t²), t = (1 − F/(μN))^{1/3}: 2/3 in the linear theory,
+/// 1 in full slip.
+fn force_exponent(saturation: f64) -> f64 {
+    let t = (1.0 - saturation.clamp(0.0, 1.0)).cbrt();
+    1.0 - t * t / (1.0 + t + t * t)
+}
+
+/// The tangential solutions of a wheel's patches from the last pass that solved them.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct TangentialMemo {
+    patches: [PatchTangential; MAX_GROUPS],
+    n: usize,
+    /// The pass's normal-force target [N] (NaN: nothing recorded).
+    target: f64,
+    /// Whether a pass has reused the record since it was made.
+    reused: bool,
+}
+
+impl Default for TangentialMemo {
+    fn default() -> Self {
+        Self {
+            patches: [PatchTangential::default(); MAX_GROUPS],
+            n: 0,
+            target: f64::NAN,
+            reused: false,
+        }
+    }
+}
+
+impl TangentialMemo {
+    /// Starts recording the solutions of a pass balanced against `target` [N] (NaN: a pass
+    /// without a load target, never reused).
+    pub fn start(&mut self, target: f64) {
+        self.n = 0;
+        self.target = target;
+        self.reused = false;
+    }
+
+    /// Records the next patch's solution.
+    pub fn push(&mut self, patch: PatchTangential) {
+        if self.n < MAX_GROUPS {
+            self.patches[self.n] = patch;
+            self.n += 1;
+        }
+    }
+
+    /// Whether a pass balanced against `target` [N] on a wheel of load `load` [N] may reuse the
+    /// recorded solutions — within [`REUSE_WINDOW`], and once: the pass after a reused one
+    /// (which did not converge) solves again — and marks them used if so.
+    pub fn take(&mut self, target: f64, load: f64) -> bool {
+        let allowed = !self.reused && (target - self.target).abs() <= REUSE_WINDOW * load;
+        self.reused |= allowed;
+        allowed
+    }
+
+    /// Number of patches recorded.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+
+    /// The recorded solution of the patch in output slot `slot` scaled to `normal_force` at
+    /// friction coefficient `mu`, if it is the same patch (same weight) and both forces are positive.
+    pub fn scaled(
+        &self,
+        slot: usize,
+        weight: f64,
+        normal_force: f64,
+        mu: f64,
+    ) -> Option<PatchTangential> {
+        let recorded = self.patches[..self.n].get(slot)?;
+        if recorded.weight != weight {
+            return None;
+        }
+        recorded.scaled(normal_force, mu)
+    }
+}
+
+/// What a wheel's evaluation does about the tangential problem.
+pub(super) enum Tangential<'a> {
+    /// Normal forces only.
+    None,
+    /// Solve it on every patch, recording the solutions.
+    Solve(&'a mut TangentialMemo),
+    /// Take every patch's from the record, scaled to its new normal force.
+    Reuse(&'a TangentialMemo),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scaling_follows_the_similarity_exponents() {
+        let p = PatchTangential {
+            normal_force: 1e4,
+            weight: 1.0,
+            fx: 100.0,
+            fy: -200.0,
+            mz: 3.0,
+            adhesion_fraction: 0.4,
+            frictional_power: 50.0,
+            max_traction: 1e8,
+            tangential: Vector3::new(100.0, -190.0, 20.0),
+        };
+        let s = p.scaled(8e4, 0.3).unwrap();
+        // 8 = 2³: forces × 2^{3α}, the moment × 2^{3α+1}, the traction bound × 2, with α of
+        // the saturation |F|/(μN) = √5·100/3000.
+        let alpha = force_exponent(100.0 * 5f64.sqrt() / 3e3);
+        assert!(alpha > 2.0 / 3.0 && alpha < 0.7, "{alpha}");
+        let f = 2f64.powf(3.0 * alpha);
+        assert!((s.fx / (100.0 * f) - 1.0).abs() < 1e-14);
+        assert!((s.fy / (-200.0 * f) - 1.0).abs() < 1e-14);
+        assert!((s.mz / (3.0 * 2.0 * f) - 1.0).abs() < 1e-14);
+        assert!((s.max_traction / 2e8 - 1.0).abs() < 1e-14);
+        assert_eq!(s.adhesion_fraction, 0.4);
+        assert!((s.tangential.z / (20.0 * f) - 1.0).abs() < 1e-14);
+        assert!(p.scaled(0.0, 0.3).is_none());
+        // The exponent's ends: the linear theory and full slip.
+        assert!((force_exponent(0.0) - 2.0 / 3.0).abs() < 1e-15);
+        assert!((force_exponent(1.0) - 1.0).abs() < 1e-15);
+        assert!(force_exponent(0.5) > force_exponent(0.2));
+        assert!(p.scaled(f64::NAN, 0.3).is_none());
+    }
+
+    #[test]
+    fn the_record_is_reused_only_within_its_window_and_for_its_own_patches() {
+        let mut memo = TangentialMemo::default();
+        assert!(!memo.take(4e4, 4e4), "nothing recorded");
+        memo.start(4e4);
+        memo.push(PatchTangential {
+            normal_force: 4e4,
+            weight: 0.75,
+            ..PatchTangential::default()
+        });
+        // Window 3e−6 of 40 kN: 0.12 N; once.
+        assert!(!memo.take(4e4 + 0.2, 4e4));
+        assert!(memo.take(4e4 + 0.1, 4e4));
+        assert!(!memo.take(4e4 + 0.1, 4e4), "used once already");
+        assert!(memo.scaled(0, 0.75, 4.0001e4, 0.3).is_some());
+        assert!(memo.scaled(0, 0.5, 4e4, 0.3).is_none(), "another patch");
+        assert!(memo.scaled(1, 0.75, 4e4, 0.3).is_none(), "not recorded");
+    }
+}
