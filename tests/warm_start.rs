@@ -104,7 +104,7 @@ fn reusing_a_creep_pass_tangential_solution_stays_within_the_creep_tolerance() {
     // again. The passes' normal-force targets differ by ~1e−6 of Q (reused up to 3e−6), and
     // the scaled forces follow them to a fraction of that: the two runs agree to the order of
     // the creep iteration's own tolerance, 2e−7 of Q (16 mN; a run whose iteration stopped one
-    // pass earlier differs by up to 1e−7 Q by itself; measured 0.7–1.0e−7), for Hertz patches
+    // pass earlier differs by up to 1e−7 Q by itself; measured 0.7–1.3e−7), for Hertz patches
     // and for strip patches with FASTSIM and FaStrip. Over 400 steps (0.4 s, two periods).
     use railcontact::tangential::patch::TangentialModel;
     let q = 78_500.0;

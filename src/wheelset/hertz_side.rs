@@ -383,9 +383,9 @@ pub(super) fn hertz_side(
         if !tangential {
             return Ok(None);
         }
-        // The second pass, when its target moved by little, keeps the first pass's tangential
-        // solution, scaled ([`crate::wheelset::reuse`]).
-        let reused = k == 1
+        // A later pass whose target moved by little keeps the last solved tangential solution,
+        // scaled, once per step ([`crate::wheelset::reuse`]).
+        let reused = k > 0
             && ctx.settings.reuse_tangential
             && side.n_ellipses == memo.len()
             && memo.take(target, q);

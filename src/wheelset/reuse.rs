@@ -23,10 +23,11 @@
 //! direction turning as the saturation changes, the spin's share, the patch's shape and point
 //! moving with the lowering — is of the order of the normal forces' relative change times the
 //! force: over the hunting wheelset of docs/performance.md the wheel forces differ from solving
-//! again by at most 1.0e−7 of Q for Hertz patches and 7–8e−8 for strip FASTSIM and FaStrip
-//! (`tests/warm_start.rs`), the order of the creep iteration's own tolerance (1e−7 of Q). Only
-//! the second pass reuses (a reused pass that does not converge is followed by solved ones,
-//! [`crate::wheelset::balance::creep_passes`]).
+//! again by at most 1.0e−7 of Q for Hertz patches, 7.5e−8 for strip FASTSIM and 1.3e−7 for
+//! FaStrip (`tests/warm_start.rs`), the order of the creep iteration's own tolerance (1e−7 of Q). One
+//! pass per step reuses, the first after a solved one whose target lies within the window (the
+//! second pass, or a later one closing on the fixed point); a reused pass that does not
+//! converge is followed by solved ones ([`crate::wheelset::balance::creep_passes`]).
 
 use nalgebra::Vector3;
 
@@ -96,8 +97,8 @@ pub(super) struct TangentialMemo {
     n: usize,
     /// The pass's normal-force target [N] (NaN: nothing recorded).
     target: f64,
-    /// Whether a pass has reused the record since it was made.
-    reused: bool,
+    /// Whether a pass of this step has reused a record (at most one does).
+    spent: bool,
 }
 
 impl Default for TangentialMemo {
@@ -106,7 +107,7 @@ impl Default for TangentialMemo {
             patches: [PatchTangential::default(); MAX_GROUPS],
             n: 0,
             target: f64::NAN,
-            reused: false,
+            spent: false,
         }
     }
 }
@@ -117,7 +118,6 @@ impl TangentialMemo {
     pub fn start(&mut self, target: f64) {
         self.n = 0;
         self.target = target;
-        self.reused = false;
     }
 
     /// Records the next patch's solution.
@@ -129,11 +129,11 @@ impl TangentialMemo {
     }
 
     /// Whether a pass balanced against `target` [N] on a wheel of load `load` [N] may reuse the
-    /// recorded solutions — within [`REUSE_WINDOW`], and once: the pass after a reused one
-    /// (which did not converge) solves again — and marks them used if so.
+    /// recorded solutions — within [`REUSE_WINDOW`], and once per step: the passes after a
+    /// reused one (which did not converge) solve again — and marks the step's reuse spent if so.
     pub fn take(&mut self, target: f64, load: f64) -> bool {
-        let allowed = !self.reused && (target - self.target).abs() <= REUSE_WINDOW * load;
-        self.reused |= allowed;
+        let allowed = !self.spent && (target - self.target).abs() <= REUSE_WINDOW * load;
+        self.spent |= allowed;
         allowed
     }
 
@@ -223,5 +223,10 @@ mod tests {
         assert!(memo.scaled(0, 0.75, 4.0001e4, 0.3).is_some());
         assert!(memo.scaled(0, 0.5, 4e4, 0.3).is_none(), "another patch");
         assert!(memo.scaled(1, 0.75, 4e4, 0.3).is_none(), "not recorded");
+        memo.start(4e4);
+        assert!(
+            !memo.take(4e4, 4e4),
+            "once per step, also after a new record"
+        );
     }
 }

@@ -630,10 +630,10 @@ pub(super) fn solve_strips(
             ),
         };
         side.strips = Some(strips);
-        // The second pass, when its target moved by little, keeps the first pass's tangential
-        // solution, scaled ([`crate::wheelset::reuse`]).
+        // A later pass whose target moved by little keeps the last solved tangential solution,
+        // scaled, once per step ([`crate::wheelset::reuse`]).
         let target = target.unwrap_or(f64::NAN);
-        let reused = k == 1 && ctx.settings.reuse_tangential && memo.take(target, q);
+        let reused = k > 0 && ctx.settings.reuse_tangential && memo.take(target, q);
         let mode = if reused {
             Tangential::Reuse(&memo)
         } else {
