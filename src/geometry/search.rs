@@ -520,6 +520,14 @@ const PROJECTION_TOLERANCE: f64 = 1e-9;
 /// tangent nearly always suffices (−11 k instructions per strip-model wheelset solve).
 const PROJECTION_STOP: f64 = 1e-10;
 
+/// Residual |t(w) − s| below which a plane projection takes its last Newton step δ along the
+/// curve's tangent instead of evaluating the curve there [m]: the point's height is then off
+/// the curve by ½ z'' δ² ≲ 4e−15 m (δ ≲ 1e−8 m, z'' ≤ 1/(13 mm) on S1002's flange root), and
+/// its other quantities (rail coordinate, radius, slope, yaw lead) are the evaluated point's,
+/// δ ≲ 10 nm away — what a start extrapolated from the neighbouring strips leaves
+/// ([`ProjectionTrail`]), so that those projections need one curve evaluation.
+const PROJECTION_FINISH: f64 = 1e-8;
+
 /// max of z'² + r z'' with r = `radius` + z (the radius at the point) [-] over the wheel profile
 /// from the flange tip `from` to the field side, sampled every 10 µm. Where the spline's knots
 /// cluster closer than that (1 µm near the S1002 flange tip) its z'' can spike between samples,
@@ -580,8 +588,35 @@ fn project_on_plane<T: Copy>(
     s: f64,
     curve: impl Fn(f64) -> (f64, f64, T),
 ) -> (CurvePoint<T>, bool) {
+    project_from(plane, s, plane.w0 + s * plane.cos_gamma, &curve)
+}
+
+/// [`project_on_plane`] started at `start` (a point extrapolated from the projections of the
+/// neighbouring in-plane coordinates, [`ProjectionTrail`]); where that does not converge, from
+/// the tangent.
+fn project_near<T: Copy>(
+    plane: &ContactPlane,
+    s: f64,
+    start: Option<f64>,
+    curve: impl Fn(f64) -> (f64, f64, T),
+) -> (CurvePoint<T>, bool) {
+    if let Some(w) = start {
+        let found = project_from(plane, s, w, &curve);
+        if found.1 {
+            return found;
+        }
+    }
+    project_from(plane, s, plane.w0 + s * plane.cos_gamma, &curve)
+}
+
+/// The Newton iteration of [`project_on_plane`] from `w`.
+fn project_from<T: Copy>(
+    plane: &ContactPlane,
+    s: f64,
+    mut w: f64,
+    curve: &impl Fn(f64) -> (f64, f64, T),
+) -> (CurvePoint<T>, bool) {
     let (sin_g, cos_g) = (plane.sin_gamma, plane.cos_gamma);
-    let mut w = plane.w0 + s * cos_g;
     let (z, slope, extra) = curve(w);
     let mut point = CurvePoint { w, z, extra };
     let mut slope = slope;
@@ -591,13 +626,53 @@ fn project_on_plane<T: Copy>(
         if residual.abs() < PROJECTION_STOP || dt <= 0.0 || !dt.is_finite() {
             break;
         }
-        w -= residual / dt;
+        let step = -residual / dt;
+        if residual.abs() < PROJECTION_FINISH {
+            // The last step along the tangent, without evaluating the curve again.
+            point.w += step;
+            point.z += slope * step;
+            residual = (point.w - plane.w0) * cos_g - (point.z - plane.z0) * sin_g - s;
+            break;
+        }
+        w += step;
         let (z, dz, extra) = curve(w);
         point = CurvePoint { w, z, extra };
         slope = dz;
         residual = (w - plane.w0) * cos_g - (z - plane.z0) * sin_g - s;
     }
     (point, residual.abs() <= PROJECTION_TOLERANCE)
+}
+
+/// The points of one surface projected at equally spaced in-plane coordinates, the last four,
+/// for the next projection's start (`WheelOnRail::strip_geometry`): the cubic through them
+/// lands within ~1e−9 m of the next point at strips 0.5 mm apart (the profile splines' third
+/// derivatives jump at their knots), below [`PROJECTION_FINISH`], so that the projection needs
+/// one curve evaluation instead of the tangent start's two; farther off (a fold, a coarse
+/// strip spacing) it takes its Newton steps as before.
+#[derive(Debug, Clone, Copy, Default)]
+struct ProjectionTrail {
+    /// Oldest first.
+    w: [f64; 4],
+    n: usize,
+}
+
+impl ProjectionTrail {
+    /// The next point's start: the cubic extrapolation, once four points are known.
+    fn start(&self) -> Option<f64> {
+        let w = &self.w;
+        (self.n >= 4).then(|| 4.0 * w[3] - 6.0 * w[2] + 4.0 * w[1] - w[0])
+    }
+
+    /// Appends a projected point (`found` false: the surface has none there, start again).
+    fn push(&mut self, w: f64, found: bool) {
+        if !found {
+            self.n = 0;
+            return;
+        }
+        self.w.copy_within(1.., 0);
+        self.w[3] = w;
+        self.n = (self.n + 1).min(4);
+    }
 }
 
 /// Normal coordinate (n = (sin γ, cos γ)) of the wheelset-frame point (w, z) from the plane's
@@ -1601,17 +1676,25 @@ impl WheelOnRail {
         (w - plane.w0) * plane.cos_gamma - (z - plane.z0) * plane.sin_gamma
     }
 
-    /// Rail and wheel points at in-plane coordinate `s` and their normal gap.
-    fn gap_in_plane(&self, plane: &ContactPlane, s: f64) -> PlaneGap {
+    /// Rail and wheel points at in-plane coordinate `s` and their normal gap, their projections
+    /// started from the trails' extrapolations where known.
+    fn gap_in_plane(
+        &self,
+        plane: &ContactPlane,
+        s: f64,
+        trails: &mut (ProjectionTrail, ProjectionTrail),
+    ) -> PlaneGap {
         let p = &self.pose;
-        let (rail, rail_found) = project_on_plane(plane, s, |w| {
+        let (rail, rail_found) = project_near(plane, s, trails.0.start(), |w| {
             let q = self.rail_at(w, p);
             (q.z, q.slope, (q.y_rail, q.profile_slope))
         });
-        let (wheel, wheel_found) = project_on_plane(plane, s, |w| {
+        let (wheel, wheel_found) = project_near(plane, s, trails.1.start(), |w| {
             let q = self.wheel_at(w, p);
             (q.z + plane.lift, q.slope, (q.x, q.radius))
         });
+        trails.0.push(rail.w, rail_found);
+        trails.1.push(wheel.w, wheel_found);
         let found = rail_found && wheel_found;
         PlaneGap {
             f: if found {
@@ -1649,14 +1732,15 @@ impl WheelOnRail {
         let ds = (s_hi - s_lo) / n as f64;
         geom.n = n;
         geom.ds = ds;
-        let mut previous = self.gap_in_plane(plane, s_lo - 0.5 * ds);
-        let mut current = self.gap_in_plane(plane, s_lo + 0.5 * ds);
+        let mut trails = Default::default();
+        let mut previous = self.gap_in_plane(plane, s_lo - 0.5 * ds, &mut trails);
+        let mut current = self.gap_in_plane(plane, s_lo + 0.5 * ds, &mut trails);
         // Strips whose B stencil reaches a point without surfaces take the B of the nearest
         // strip whose stencil is whole (such strips border a fold and are out of contact).
         let mut whole_stencil = [false; MAX_STRIPS];
         for (i, whole) in whole_stencil[..n].iter_mut().enumerate() {
             let s = s_lo + (i as f64 + 0.5) * ds;
-            let next = self.gap_in_plane(plane, s + ds);
+            let next = self.gap_in_plane(plane, s + ds, &mut trails);
             let slope = current.rail_slope;
             let radius = current.radius;
             // γ = −atan z_r': cos γ = 1/√(1 + z_r'²), sin γ = −z_r' cos γ.
