@@ -728,9 +728,12 @@ impl DirectionPass {
         let trial_y = self.py - (self.step_y_at_centre + self.step_y_per_x * xr);
         let trial_sq = trial_x * trial_x + trial_y * trial_y;
         if trial_sq > shape * shape {
-            let f = shape / trial_sq.sqrt();
-            self.px = trial_x * f;
-            self.py = trial_y * f;
+            // Onto the bound: the products with `shape` run beside the root, and the division
+            // ends the element's dependency chain (one multiplication shorter than scaling by
+            // shape/|trial|).
+            let norm = trial_sq.sqrt();
+            self.px = trial_x * shape / norm;
+            self.py = trial_y * shape / norm;
             Some((trial_x, trial_y))
         } else {
             self.px = trial_x;
