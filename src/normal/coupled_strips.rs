@@ -111,6 +111,12 @@ const SPREAD: f64 = 0.5;
 /// component jumped by 200 N of 6 kN in S1002/UIC60 flange contact).
 const LIGHT_LOAD: f64 = 0.25;
 
+/// Most solves of C2–C3 per step while the half-lengths settle.
+const LENGTH_ITERATIONS: usize = 50;
+
+/// Relative change of every loaded strip's half-length below which they have settled.
+const LENGTH_TOL: f64 = 1e-10;
+
 /// The complementarity state of a candidate strip (C3).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 enum Load {
@@ -142,6 +148,7 @@ pub struct CoupledStrips {
     /// load y_i and its bound, residual u_i − (δ − f_i), state; Ĵ at a column's strip edges.
     strip: PerStrip<usize>,
     half: PerStrip<f64>,
+    next_half: PerStrip<f64>,
     rhs: PerStrip<f64>,
     load: PerStrip<f64>,
     residual: PerStrip<f64>,
@@ -150,8 +157,13 @@ pub struct CoupledStrips {
     state: PerStrip<Load>,
     log_half: PerStrip<f64>,
     edge_integral: PerStrip<f64>,
-    /// States of the last solve, per strip (the warm start).
+    /// Per candidate: the local Hertz ratio p0/(E* a) [1/m] (C1) and the half-length with which
+    /// its row takes an adjacent column's spread (its own a_i if loaded, else 0).
+    ratio: PerStrip<f64>,
+    row_half: PerStrip<f64>,
+    /// States and half-lengths of the last solve, per strip (the warm start).
     warm: PerStrip<Load>,
+    warm_half: PerStrip<f64>,
     /// G of the candidates (row stride MAX_STRIPS) and the block being factorised.
     matrix: Vec<f64>,
     block: Vec<f64>,
@@ -181,6 +193,7 @@ impl CoupledStrips {
             log_ratio: PerStrip::default(),
             strip: PerStrip::default(),
             half: PerStrip::default(),
+            next_half: PerStrip::default(),
             rhs: PerStrip::default(),
             load: PerStrip::default(),
             residual: PerStrip::default(),
@@ -189,7 +202,10 @@ impl CoupledStrips {
             state: PerStrip::default(),
             log_half: PerStrip::default(),
             edge_integral: PerStrip::default(),
+            ratio: PerStrip::default(),
+            row_half: PerStrip::default(),
             warm: PerStrip::default(),
+            warm_half: PerStrip::default(),
             matrix: vec![0.0; MAX_STRIPS * MAX_STRIPS],
             block: vec![0.0; MAX_STRIPS * MAX_STRIPS],
             block_index: PerStrip::default(),
@@ -235,13 +251,13 @@ impl CoupledStrips {
             }
             for r in 0..m {
                 let k = self.strip[r].abs_diff(j);
-                let spread = SPREAD * self.half[r];
+                let spread = SPREAD * self.row_half[r];
                 let value = if k == 0 {
                     2.0 * self.edge_integral[0]
                 } else if k > 1 || spread <= a {
                     self.strip_difference(k, a, |k| self.edge_integral[k])
                 } else {
-                    let log_spread = SPREAD.ln() + self.log_half[r];
+                    let log_spread = spread.ln();
                     self.strip_difference(k, spread, |k| {
                         self.kernel
                             .at_log(self.edge[k] / spread, self.log_edge[k] - log_spread)
@@ -483,55 +499,93 @@ impl StripModel for CoupledStrips {
             Some(n) => n.min(self.n),
             None => return 0.0,
         };
-        // C1: the candidates.
+        // C1: the candidates, every strip the rigid bodies overlap.
         let mut m = 0;
         let mut rhs_max: f64 = 0.0;
         for i in 0..n {
-            if let Some((a, peak)) = self.analyn.strip_at(i, delta) {
-                let rhs = delta - geom.f[i];
-                // y_max from p0 ≤ PEAK_BOUND p_ANALYN min(1, 2a/Δs) (p0 = πE* y/a,
-                // p_ANALYN = E* peak).
-                let bound = PEAK_BOUND * peak * a / PI * (2.0 * a / geom.ds).min(1.0);
-                if a > 0.0 && a.is_finite() && rhs.is_finite() && bound > 0.0 && bound.is_finite() {
-                    self.strip[m] = i;
-                    self.half[m] = a;
-                    self.rhs[m] = rhs;
-                    self.bound[m] = bound;
-                    self.peak[m] = peak;
-                    self.state[m] = self.warm[i];
-                    rhs_max = rhs_max.max(rhs.abs());
-                    m += 1;
-                }
+            let rhs = delta - geom.f[i];
+            let Some((ratio, alpha_a)) = self.analyn.local_ellipse(i) else {
+                continue;
+            };
+            if !(rhs > 0.0 && rhs.is_finite() && ratio > 0.0 && ratio.is_finite()) {
+                continue;
             }
+            let seed = if self.warm_half[i] > 0.0 {
+                self.warm_half[i]
+            } else if let Some((a, _)) = self.analyn.strip_at(i, delta) {
+                a
+            } else {
+                (rhs / alpha_a).sqrt()
+            };
+            if !(seed > 0.0 && seed.is_finite()) {
+                continue;
+            }
+            self.strip[m] = i;
+            self.half[m] = seed;
+            self.row_half[m] = if self.warm[i] == Load::Unloaded {
+                0.0
+            } else {
+                seed
+            };
+            self.ratio[m] = ratio;
+            self.rhs[m] = rhs;
+            self.bound[m] = f64::INFINITY;
+            self.state[m] = self.warm[i];
+            rhs_max = rhs_max.max(rhs);
+            m += 1;
         }
+        self.warm_half[..n].fill(0.0);
+        self.warm[..n].fill(Load::Free);
         if m == 0 {
             return 0.0;
         }
-        // C2, C3.
-        self.assemble(m);
         let tol = FEASIBILITY_TOL * rhs_max;
-        if !self.pivot(m, tol) {
-            self.fallbacks += 1;
-            if !self.gauss_seidel(m) {
-                self.unconverged += 1;
+        // C2, C3 at the current half-lengths; then each loaded strip's half-length from its
+        // force by the local Hertz ratio (a² = π y/ratio), until they no longer change.
+        for _ in 0..LENGTH_ITERATIONS {
+            self.assemble(m);
+            if !self.pivot(m, tol) {
+                self.fallbacks += 1;
+                if !self.gauss_seidel(m) {
+                    self.unconverged += 1;
+                }
+            }
+            let mut change: f64 = 0.0;
+            for r in 0..m {
+                let y = self.load[r];
+                if y > 0.0 {
+                    let a = (PI * y / self.ratio[r]).sqrt();
+                    change = change.max((a / self.half[r] - 1.0).abs());
+                    if self.row_half[r] == 0.0 {
+                        change = f64::INFINITY;
+                    }
+                    self.next_half[r] = a;
+                } else {
+                    if self.row_half[r] > 0.0 {
+                        change = f64::INFINITY;
+                    }
+                    self.next_half[r] = 0.0;
+                }
+            }
+            if change <= LENGTH_TOL {
+                break;
+            }
+            for r in 0..m {
+                if self.next_half[r] > 0.0 {
+                    self.half[r] = self.next_half[r];
+                }
+                self.row_half[r] = self.next_half[r];
             }
         }
-        // C4, with the length of a lightly loaded strip shortened (C5).
-        self.warm[..n].fill(Load::Free);
+        // C4.
         for r in 0..m {
             let i = self.strip[r];
             self.warm[i] = self.state[r];
             let y = self.load[r];
             if y > 0.0 {
                 let a = self.half[r];
-                let pmax = PI * y / a;
-                let shortening = (pmax / (LIGHT_LOAD * self.peak[r])).min(1.0);
-                out.set(
-                    i,
-                    a * shortening,
-                    params.e_star * pmax / shortening,
-                    geom.ds,
-                );
+                self.warm_half[i] = a;
+                out.set(i, a, params.e_star * PI * y / a, geom.ds);
             }
         }
         out.normal_force()
