@@ -110,19 +110,6 @@ impl Analyn {
     }
 }
 
-impl Analyn {
-    /// Strip `i`'s local Hertz ellipse, independent of δ: the peak-to-half-length ratio
-    /// p_max,i/(E* x_l,i) = √((A_i + B_i)(1 + α_i)A_i) P_i [1/m] and (1 + α_i)A_i [1/m] (so that
-    /// x_l² = δ_loc/((1 + α_i)A_i)), or `None` where the strip cannot be in contact.
-    pub(crate) fn local_ellipse(&self, i: usize) -> Option<(f64, f64)> {
-        if i >= self.n || !self.active[i] {
-            return None;
-        }
-        let alpha_a = self.one_plus_alpha[i] * self.curv_a[i];
-        Some((self.peak_coeff[i] * alpha_a.sqrt(), alpha_a))
-    }
-}
-
 impl StripModel for Analyn {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
         let n = geom.len();

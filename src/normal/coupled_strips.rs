@@ -74,9 +74,8 @@
 use std::f64::consts::PI;
 
 use crate::geometry::strips::{PerStrip, StripGeometry, MAX_STRIPS};
-use crate::normal::analyn::Analyn;
 use crate::normal::kernel::ScaledStripIntegral;
-use crate::normal::shape::HertzShapeTable;
+use crate::normal::shape::{HertzShapeTable, SHAPE_TABLE_RANGE};
 use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
 
@@ -116,8 +115,11 @@ enum Load {
 /// Coupled strips (docs/theory.md §5.10). See the module documentation.
 #[derive(Debug, Clone)]
 pub struct CoupledStrips {
-    /// ANALYN's prepared strips: the half-lengths a_i (C1).
-    analyn: Analyn,
+    /// Per strip: whether it can carry load (A_i finite and positive, f_i finite), its local
+    /// Hertz ratio p0/(E* a) [1/m] (C1) and (1 + α_i)A_i with B floored as ANALYN's (the seed).
+    active: PerStrip<bool>,
+    strip_ratio: PerStrip<f64>,
+    seed_coeff: PerStrip<f64>,
     /// Ĵ, tabulated at construction.
     kernel: ScaledStripIntegral,
     /// Strips prepared.
@@ -177,7 +179,9 @@ impl CoupledStrips {
     /// The model with its kernel table and buffers (allocates once, here).
     pub fn new() -> Self {
         Self {
-            analyn: Analyn::default(),
+            active: PerStrip::default(),
+            strip_ratio: PerStrip::default(),
+            seed_coeff: PerStrip::default(),
             kernel: ScaledStripIntegral::new(),
             n: 0,
             m: 0,
@@ -453,9 +457,28 @@ fn lu_solve(a: &mut [f64], size: usize, b: &mut [f64]) -> bool {
 
 impl StripModel for CoupledStrips {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
-        self.analyn.prepare(geom, params, table);
         let n = geom.len();
         self.n = n;
+        let b_min = params.b_floor();
+        for i in 0..n {
+            let (a, b) = (geom.curv_a[i], geom.curv_b[i]);
+            self.active[i] = a.is_finite() && a > 0.0 && geom.f[i].is_finite();
+            if !self.active[i] {
+                continue;
+            }
+            // C1: the Hertz ellipse of (A_i, max(B_i, 0)), a line contact where B_i ≤ 0 (the
+            // table's end, A/B = e^16).
+            let u = if b > 0.0 && b.is_finite() {
+                (a / b).ln().min(SHAPE_TABLE_RANGE)
+            } else {
+                SHAPE_TABLE_RANGE
+            };
+            let shape = table.at_log_ratio(u);
+            let b_line = a * (-u).exp();
+            self.strip_ratio[i] = ((a + b_line) * a / shape.eps_x).sqrt() * shape.p0_coeff;
+            let b_seed = if b > b_min && b.is_finite() { b } else { b_min };
+            self.seed_coeff[i] = a / table.at_log_ratio((a / b_seed).ln()).eps_x;
+        }
         let ds = geom.ds;
         for k in 0..n {
             let edge = (k as f64 + 0.5) * ds;
@@ -486,18 +509,15 @@ impl StripModel for CoupledStrips {
         let mut rhs_max: f64 = 0.0;
         for i in 0..n {
             let rhs = delta - geom.f[i];
-            let Some((ratio, alpha_a)) = self.analyn.local_ellipse(i) else {
-                continue;
-            };
-            if !(rhs > 0.0 && rhs.is_finite() && ratio > 0.0 && ratio.is_finite()) {
+            let ratio = self.strip_ratio[i];
+            if !(self.active[i] && rhs > 0.0 && rhs.is_finite() && ratio > 0.0 && ratio.is_finite())
+            {
                 continue;
             }
             let seed = if self.warm_half[i] > 0.0 {
                 self.warm_half[i]
-            } else if let Some((a, _)) = self.analyn.strip_at(i, delta) {
-                a
             } else {
-                (rhs / alpha_a).sqrt()
+                (rhs / self.seed_coeff[i]).sqrt()
             };
             if !(seed > 0.0 && seed.is_finite()) {
                 continue;
