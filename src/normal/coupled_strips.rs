@@ -36,12 +36,15 @@
 //!
 //! # Choices (ours)
 //!
-//! * The half-lengths: a plain fixed-point step where the loaded set changed, otherwise Anderson
-//!   mixing of depth one on the residuals ln √(π y_i/r_i) − ln a_i (coefficient within
-//!   [−[`MIXING_LIMIT`], ½], a step changes ln a_i by at most [`STEP_LIMIT`]), until every loaded
-//!   strip's residual is below [`LENGTH_TOL`] or [`LENGTH_ITERATIONS`] solves (counted,
+//! * The half-lengths: Newton's method in ln a_i on the loaded set after each solve of C2–C3
+//!   (the derivative of G from KP6's I(1, T) = Ĵ'(T) in closed form, once per column and
+//!   offset; a step changes ln a_i by at most [`STEP_LIMIT`]; a plain step x_i ← ln √(π y_i/r_i)
+//!   if the Newton matrix is singular), until every loaded strip's residual is below
+//!   [`LENGTH_TOL`] with the loaded set unchanged, or [`LENGTH_ITERATIONS`] solves (counted,
 //!   [`CoupledStrips::unsettled`]). A cold start takes a_i = √((δ − f_i)/((1 + α_i)A_i)) with B
-//!   floored at B_min as ANALYN's; a step starts from the previous step's lengths and states.
+//!   floored at B_min as ANALYN's (4–7 solves on the test gaps); a step starts from the previous
+//!   step's lengths scaled by √((δ − f_i)/(δ − f_i)_previous) and its states (one solve on a
+//!   steady pose, 2–5 while the pose changes).
 //! * C3 by block principal pivoting (Júdice–Pires: flip every infeasible strip between free and
 //!   unloaded while their number falls, three more tries, then Murty's least-index rule),
 //!   warm-started from the previous solve's states, each step a partial-pivoting LU of the free
@@ -60,8 +63,11 @@
 //! * r_i is the local Hertz ellipse's ratio, not the curvature condition along x of the coupled
 //!   displacement: the strip lengths are as good as that ratio (against the exact half-space on
 //!   S1002/UIC60, −1…+6 mm: area −2.5…+2.2 %; Manchester A-2.2's flange states: −6…−8 %).
-//! * A pose change costs several complementarity solves (a steady pose one); a cold start
-//!   16–23 on the test gaps.
+//! * A changing pose costs 2–5 solves of C2–C3 per normal solve (a steady pose one): on the
+//!   hunting wheelset ~4 × the cost of the earlier form with ANALYN's fixed lengths.
+//! * The fixed point of C1–C4 is not proven unique: on a two-region gap (`two_wells(120)` of
+//!   the tests) two iteration schemes settled at normal forces 0.4 % apart; warm and cold starts
+//!   agree on the tested sequences (1e−9).
 //!
 //! `prepare` and `solve` use buffers sized at construction ([`MAX_STRIPS`]): no allocation, no
 //! panic, no NaN for any finite geometry and any δ.
@@ -69,7 +75,7 @@
 use std::f64::consts::PI;
 
 use crate::geometry::strips::{PerStrip, StripGeometry, MAX_STRIPS};
-use crate::normal::kernel::ScaledStripIntegral;
+use crate::normal::kernel::{inner_integral, ScaledStripIntegral};
 use crate::normal::shape::{HertzShapeTable, SHAPE_TABLE_RANGE};
 use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
@@ -84,12 +90,8 @@ const BLOCK_TRIES: usize = 3;
 /// Projected Gauss–Seidel sweeps of the fallback.
 const PGS_SWEEPS: usize = 20_000;
 
-/// Most solves of C2–C3 per step while the half-lengths settle.
+/// Most solves of C2–C3 per normal solve while the half-lengths settle.
 const LENGTH_ITERATIONS: usize = 100;
-
-/// Bound of the Anderson mixing coefficient's magnitude (a contraction of 0.8 per plain step
-/// gives −4).
-const MIXING_LIMIT: f64 = 4.0;
 
 /// Largest change of ln a_i in one update.
 const STEP_LIMIT: f64 = 1.0;
@@ -132,12 +134,8 @@ pub struct CoupledStrips {
     /// load y_i and its bound, residual u_i − (δ − f_i), state; Ĵ at a column's strip edges.
     strip: PerStrip<usize>,
     half: PerStrip<f64>,
-    /// Per candidate, the fixed point of the half-lengths: g = ln √(π y/ratio) and the residual
-    /// f = g − ln a, now and at the previous half-lengths.
-    g_now: PerStrip<f64>,
-    f_now: PerStrip<f64>,
-    g_last: PerStrip<f64>,
-    f_last: PerStrip<f64>,
+    /// Per candidate, the residual of C4, ln √(π y/ratio) − ln a.
+    residual_log: PerStrip<f64>,
     rhs: PerStrip<f64>,
     load: PerStrip<f64>,
     residual: PerStrip<f64>,
@@ -151,6 +149,8 @@ pub struct CoupledStrips {
     /// States and half-lengths of the last solve, per strip (the warm start).
     warm: PerStrip<Load>,
     warm_half: PerStrip<f64>,
+    /// δ − f_i of the last solve per strip [m].
+    warm_rhs: PerStrip<f64>,
     /// G of the candidates (row stride MAX_STRIPS) and the block being factorised.
     matrix: Vec<f64>,
     block: Vec<f64>,
@@ -186,10 +186,7 @@ impl CoupledStrips {
             log_ratio: PerStrip::default(),
             strip: PerStrip::default(),
             half: PerStrip::default(),
-            g_now: PerStrip::default(),
-            f_now: PerStrip::default(),
-            g_last: PerStrip::default(),
-            f_last: PerStrip::default(),
+            residual_log: PerStrip::default(),
             rhs: PerStrip::default(),
             load: PerStrip::default(),
             residual: PerStrip::default(),
@@ -200,6 +197,7 @@ impl CoupledStrips {
             loaded: PerStrip::default(),
             warm: PerStrip::default(),
             warm_half: PerStrip::default(),
+            warm_rhs: PerStrip::default(),
             matrix: vec![0.0; MAX_STRIPS * MAX_STRIPS],
             block: vec![0.0; MAX_STRIPS * MAX_STRIPS],
             block_index: PerStrip::default(),
@@ -239,6 +237,79 @@ impl CoupledStrips {
     #[cfg(test)]
     fn candidates(&self, m: usize) -> impl Iterator<Item = (Load, f64, f64)> + '_ {
         (0..m).map(|r| (self.state[r], self.load[r], self.residual[r]))
+    }
+
+    /// One update of the loaded candidates' half-lengths towards C4 after a solve of C2–C3;
+    /// `true` once every loaded strip's residual R_i = ln √(π y_i/r_i) − ln a_i is below
+    /// [`LENGTH_TOL`] (and the loaded set unchanged). Newton's step in x = ln a on the loaded set
+    /// L: with G y = δ − f on L, ∂y/∂x_j = −G⁻¹ D e_j, D_ij = y_j ∂G_ij/∂x_j, so
+    /// (D + 2 G Y) Δx = 2 G Y R (Y = diag y); each Δx_i within ±[`STEP_LIMIT`]. A singular
+    /// Newton matrix falls back to the plain step x_i ← ln √(π y_i/r_i).
+    fn settle_lengths(&mut self, m: usize) -> bool {
+        let mut change: f64 = 0.0;
+        let mut size = 0;
+        for r in 0..m {
+            let y = self.load[r];
+            let loaded = y > 0.0;
+            if loaded != self.loaded[r] {
+                change = f64::INFINITY;
+            }
+            self.loaded[r] = loaded;
+            if loaded {
+                let g = 0.5 * (PI * y / self.ratio[r]).ln();
+                self.residual_log[r] = g - self.half[r].ln();
+                change = change.max(self.residual_log[r].exp_m1().abs());
+                self.block_index[size] = r;
+                size += 1;
+            }
+        }
+        if change <= LENGTH_TOL {
+            return true;
+        }
+        let (first, last) = (self.block_index[0], self.block_index[size - 1]);
+        for q in 0..size {
+            let c = self.block_index[q];
+            let (a, y) = (self.half[c], self.load[c]);
+            let j = self.strip[c];
+            // d/d ln a of Ĵ((k + ½)Δs/a) = −T I(1, T), once per offset k.
+            let far = self.strip[first]
+                .abs_diff(j)
+                .max(self.strip[last].abs_diff(j));
+            for k in 0..=far {
+                let t = self.edge[k] / a;
+                self.edge_integral[k] = -t * inner_integral(1.0, t);
+            }
+            for (p, &r) in self.block_index[..size].iter().enumerate() {
+                let k = self.strip[r].abs_diff(j);
+                let derivative = if k == 0 {
+                    2.0 * self.edge_integral[0]
+                } else {
+                    self.edge_integral[k] - self.edge_integral[k - 1]
+                };
+                let g = self.matrix[r * MAX_STRIPS + c];
+                self.block[p * MAX_STRIPS + q] = y * (derivative + 2.0 * g);
+            }
+        }
+        for p in 0..size {
+            let r = self.block_index[p];
+            let row = &self.matrix[r * MAX_STRIPS..r * MAX_STRIPS + m];
+            self.block_rhs[p] = 2.0
+                * self.block_index[..size]
+                    .iter()
+                    .map(|&c| row[c] * self.load[c] * self.residual_log[c])
+                    .sum::<f64>();
+        }
+        let newton = lu_solve(&mut self.block, size, &mut self.block_rhs[..size]);
+        for p in 0..size {
+            let r = self.block_index[p];
+            let step = if newton {
+                self.block_rhs[p]
+            } else {
+                self.residual_log[r]
+            };
+            self.half[r] *= step.clamp(-STEP_LIMIT, STEP_LIMIT).exp();
+        }
+        false
     }
 
     /// G of the `m` candidates (C2) into `matrix`. Column c's strip acts with its own
@@ -511,7 +582,8 @@ impl StripModel for CoupledStrips {
                 continue;
             }
             let seed = if self.warm_half[i] > 0.0 {
-                self.warm_half[i]
+                // The previous length, scaled as a local Hertz length with the overlap.
+                self.warm_half[i] * (rhs / self.warm_rhs[i]).sqrt()
             } else {
                 (rhs / self.seed_coeff[i]).sqrt()
             };
@@ -534,10 +606,8 @@ impl StripModel for CoupledStrips {
             return 0.0;
         }
         let tol = FEASIBILITY_TOL * rhs_max;
-        // C2, C3 at the current half-lengths; then each loaded strip's half-length from its
-        // force by the local Hertz ratio (a² = π y/ratio), until they no longer change.
+        // C2, C3 at the current half-lengths; then Newton's step on the loaded strips' C4.
         let mut settled = false;
-        let mut history = false;
         for _ in 0..LENGTH_ITERATIONS {
             self.length_solves += 1;
             self.assemble(m);
@@ -547,63 +617,10 @@ impl StripModel for CoupledStrips {
                     self.unconverged += 1;
                 }
             }
-            // Fixed point x = g(x) in x = ln a, g = ln √(π y/ratio) over the loaded strips, by
-            // Anderson mixing of depth one (a secant step on the whole vector) while the loaded
-            // set stays the same, a plain step when it changes.
-            let mut change: f64 = 0.0;
-            let mut same_set = history;
-            let (mut dot, mut norm) = (0.0, 0.0);
-            for r in 0..m {
-                let y = self.load[r];
-                if y > 0.0 {
-                    let x = self.half[r].ln();
-                    let g = 0.5 * (PI * y / self.ratio[r]).ln();
-                    change = change.max((g - x).exp_m1().abs());
-                    if !self.loaded[r] {
-                        change = f64::INFINITY;
-                        same_set = false;
-                    }
-                    let f = g - x;
-                    let df = f - self.f_last[r];
-                    dot += f * df;
-                    norm += df * df;
-                    self.g_now[r] = g;
-                    self.f_now[r] = f;
-                } else {
-                    if self.loaded[r] {
-                        change = f64::INFINITY;
-                        same_set = false;
-                    }
-                    self.g_now[r] = f64::NEG_INFINITY;
-                    self.f_now[r] = 0.0;
-                }
-            }
-            if change <= LENGTH_TOL {
+            if self.settle_lengths(m) {
                 settled = true;
                 break;
             }
-            let theta = if same_set && norm > 0.0 {
-                (dot / norm).clamp(-MIXING_LIMIT, 0.5)
-            } else {
-                0.0
-            };
-            for r in 0..m {
-                let g = self.g_now[r];
-                let next = if g.is_finite() {
-                    let x = self.half[r].ln();
-                    let mixed = g - theta * (g - self.g_last[r]);
-                    (x + (mixed - x).clamp(-STEP_LIMIT, STEP_LIMIT)).exp()
-                } else {
-                    0.0
-                };
-                self.g_last[r] = g;
-                self.f_last[r] = self.f_now[r];
-                if next > 0.0 {
-                    self.half[r] = next;
-                }
-                self.loaded[r] = next > 0.0;
-            }
-            history = true;
         }
         if !settled {
             self.unsettled += 1;
@@ -616,6 +633,7 @@ impl StripModel for CoupledStrips {
             if y > 0.0 {
                 let a = self.half[r];
                 self.warm_half[i] = a;
+                self.warm_rhs[i] = self.rhs[r];
                 out.set(i, a, params.e_star * PI * y / a, geom.ds);
             }
         }
