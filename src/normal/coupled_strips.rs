@@ -64,7 +64,7 @@
 //!   displacement: the strip lengths are as good as that ratio (against the exact half-space on
 //!   S1002/UIC60, −1…+6 mm: area −2.5…+2.2 %; Manchester A-2.2's flange states: −6…−8 %).
 //! * A changing pose costs 2–5 solves of C2–C3 per normal solve (a steady pose one): on the
-//!   hunting wheelset ~4 × the cost of the earlier form with ANALYN's fixed lengths.
+//!   hunting wheelset 5.2 M instructions per wheelset solve, 10 × ANALYN's (1.65 × steady).
 //! * The fixed point of C1–C4 is not proven unique: on a two-region gap (`two_wells(120)` of
 //!   the tests) two iteration schemes settled at normal forces 0.4 % apart; warm and cold starts
 //!   agree on the tested sequences (1e−9).
@@ -687,7 +687,7 @@ mod tests {
         // A/B = 0.2, 1, 5 on strips not aligned with the patch ([−1.07 b, 1.13 b]). Hertz's a(y),
         // p(y) satisfy C1 and C4 exactly (r_i is the patch's Hertz p0/(E* a)); the loads come from
         // collocating the strips' displacements at their centres, a midpoint rule in y whose error
-        // is O((Δs/b)²): measured N/N_H − 1 = 5.7e−4, 1.4e−4, 3.4e−5 (A/B = 1) at 24, 48, 96
+        // is O((Δs/b)²): measured N/N_H − 1 = 4.9e−4, 1.3e−4, 3.3e−5 (A/B = 1) at 24, 48, 96
         // strips, pmax smaller. Bound 0.1 (Δs/b)² (8.4e−4 at 24 strips), and 96 strips at least 4×
         // better than 24. The area, a midpoint sum of 2a_i Δs, within its edge strips' error
         // ≤ 2e−3 (as ANALYN's, analyn.rs; measured ≤ 2.4e−4).
@@ -811,7 +811,7 @@ mod tests {
     #[test]
     fn warm_start_does_not_change_the_solution() {
         // The same δ sequence up and down on one model (warm) and on fresh models (cold): both
-        // settle the half-lengths to 1e−10, so N agrees to 1e−9 (measured 2e−11).
+        // settle the half-lengths to 1e−10, so N agrees to 1e−9 (measured 4e−12).
         let geom = two_wells(80);
         let mut warm = CoupledStrips::default();
         warm.prepare(&geom, &params(), table());
