@@ -3,7 +3,7 @@
 //! through tread, flange-root and flange contact for every normal model, each step whose forces
 //! change by more than 0.5 % of the wheel load bisected down to 1e−12 m (a steep but continuous
 //! change shrinks with the interval; a jump does not). Also checked on every pose: no error, the
-//! load balanced to 1e−6 (the coupled strips: 1e−4, `balance_tolerance`), and an output slot keeps
+//! load balanced to 1e−6, and an output slot keeps
 //! its patch (its reference point moves by less than the slot-matching distance from step to
 //! step).
 //!
@@ -46,19 +46,8 @@ fn largest_change(a: &[f64; 6], b: &[f64; 6]) -> f64 {
 }
 
 /// Largest relative miss of the wheel load a balanced pose may show: the creep iteration's
-/// resolution (1e−7) with margin. The coupled strips get 1e−4: on flange patches their N(δ) can
-/// flatten 16-fold where a short strip enters beside long ones (one collocation point per strip,
-/// docs/theory.md §5.10), so the creep forces' vertical component steps by up to ~4e−5 of the
-/// load within the balance's tolerance of the normal load, and the creep fixed point closes on
-/// that step (measured: 3.7e−6 at y 5.5 mm, yaw 2 mrad, roll −2.7 mrad, 40 kN; 4.4e−5 at
-/// y −6.875 mm, yaw 5 mrad, 78.5 kN, in the coarse sweeps of a debug build).
-fn balance_tolerance(model: NormalModel) -> f64 {
-    if model == NormalModel::CoupledStrips {
-        1e-4
-    } else {
-        1e-6
-    }
-}
+/// resolution (1e−7) with margin.
+const BALANCE_TOLERANCE: f64 = 1e-6;
 
 struct Sweep {
     ws: Wheelset,
@@ -75,7 +64,7 @@ impl Sweep {
         Self {
             ws: builtin_wheelset_with(|s| s.normal_model = model),
             load,
-            balance: balance_tolerance(model),
+            balance: BALANCE_TOLERANCE,
             out: WheelsetResult::default(),
             worst: (0.0, 0.0),
             solves: 0,

@@ -639,8 +639,8 @@ fn vertical_balance_and_finite_outputs_over_the_sweep() {
 /// ±15 % in area and ±20 % in pmax on the tread states 0…4.5 mm except at 0.5 mm — the
 /// near-conformal two-point state where the reference's own fast methods err by 18–21 % in area
 /// and the strip models' contact positions differ by up to 2.7 mm — and the coupled strips
-/// within ±15 % in both on every state (measured: area −15.0…+2.9 %, the extreme at 0.5 mm;
-/// pmax within ±3.7 %).
+/// within ±15 % in both on every state (measured: area −7.6…+0.1 %, the extremes on the flange
+/// states; pmax −3.6…+0.4 %).
 #[test]
 fn non_elliptic_models_area_and_pmax_against_contact() {
     let d = data();

@@ -94,9 +94,8 @@ impl Analyn {
     /// A1 on strip `i` of the last `prepare` at approach `delta` [m]: the half-length x_l,i [m]
     /// and the peak pressure over the contact modulus, p_max,i/E* = √δ_loc,i √(A_i + B_i) P_i
     /// [-], or `None` where the strip is out of contact (δ_loc ≤ 0, unusable A_i or f_i, NaN δ,
-    /// or i beyond the prepared strips). Shared with the coupled strips
-    /// (`crate::normal::coupled_strips`), which take x_l,i from here and bound their peak by it.
-    pub(crate) fn strip_at(&self, i: usize, delta: f64) -> Option<(f64, f64)> {
+    /// or i beyond the prepared strips).
+    fn strip_at(&self, i: usize, delta: f64) -> Option<(f64, f64)> {
         if i >= self.n || !self.active[i] {
             return None;
         }

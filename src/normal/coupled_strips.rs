@@ -1,72 +1,73 @@
-//! Coupled strips: ANALYN's strip half-lengths, strip loads coupled through the half-space.
+//! Coupled strips: strip loads coupled through the half-space, each strip's length following its
+//! load by the local Hertz ratio of peak to length.
 //!
 //! Papers: the strip method of K. Knothe, H. Le The, "A contribution to the calculation of the
 //! contact stress distribution between two elastic bodies of revolution with non-elliptical
 //! contact area", Computers & Structures 18 (1984) 1025–1033 (semi-elliptic pressure along x on
 //! lateral strips, strip loads from collocated half-space displacements); the strip kernel of
-//! Kik–Piotrowski (KP6, `crate::normal::kernel`); the half-lengths of ANALYN, M. Sh. Sichani,
-//! R. Enblom, M. Berg, Vehicle System Dynamics 52 (2014) (A1, `crate::normal::analyn`).
-//! Equations as docs/theory.md §5.10.
+//! Kik–Piotrowski (KP6, `crate::normal::kernel`); the local Hertz ellipse per strip of ANALYN,
+//! M. Sh. Sichani, R. Enblom, M. Berg, Vehicle System Dynamics 52 (2014) (A1,
+//! `crate::normal::analyn`). Equations as docs/theory.md §5.10.
 //!
 //! # Equations (labels of docs/theory.md §5.10)
 //!
-//! * **C1** per strip i the semi-ellipse p_i(x) = p0_i √(1 − (x − x_c,i)²/a_i²), with ANALYN's
-//!   half-length a_i = √(δ_loc,i/((1 + α_i)A_i)), δ_loc,i = δ − (1 + β_i) f_i (explicit in δ;
-//!   on a Hertz gap Hertz's a(y)); strips with δ_loc,i ≤ 0 carry nothing.
+//! * **C1** per strip i the semi-ellipse p_i(x) = p0_i √(1 − (x − x_c,i)²/a_i²) with
+//!   p0_i = r_i E* a_i, r_i = √((A_i + B⁺_i)A_i/ε_x) P the Hertz peak-to-length ratio of the
+//!   local ellipse (A_i, B⁺_i = max(B_i, 0)) — ANALYN's p_max,i/(E* x_l,i) where B_i ≥ B_min, a
+//!   line contact's A_i where B_i ≤ 0 (the shape table's end, A/B = e¹⁶).
 //! * **C2** the normal displacement at strip i's centre line, u_i = Σ_j G_ij y_j, of the strip
-//!   loads y_j = 2F_j/(π²E*Δs), F_j = (π/2) p0_j a_j Δs (V1), with
+//!   loads y_j = 2F_j/(π²E*Δs) = p0_j a_j/(πE*), F_j = (π/2) p0_j a_j Δs (V1), with
 //!   G_ij = Ĵ((|i−j| + ½)Δs/a_j) − Ĵ((|i−j| − ½)Δs/a_j) (i ≠ j), G_jj = 2Ĵ(Δs/(2a_j)),
 //!   Ĵ(T) = ∫₀^T I(1, t) dt the scale-free integral of KP6's I(c, y) (Boussinesq:
-//!   u = (p0/(πE*a)) ∫∫ √(a² − x²)/√(x² + y²) = y_j G_ij, [`ScaledStripIntegral`]); on an
-//!   adjacent strip (|i − j| = 1) a_j is replaced by max(a_j, ½ a_i) ([`SPREAD`]).
-//! * **C3** complementarity on the strips with a_i > 0, loads bounded by ANALYN's peak:
-//!   0 ≤ y_i ≤ y_max,i with p0 ≤ κ p_ANALYN,i ([`PEAK_BOUND`] κ = 2), and u_i = δ − f_i where
-//!   0 < y_i < y_max,i, u_i ≥ δ − f_i where y_i = 0 (the gap f_i + u_i − δ closes where there is
-//!   load), u_i ≤ δ − f_i where y_i = y_max,i.
-//! * **C4** p0_i = πE* y_i/a_i, N = Σ F_i.
-//! * **C5** a strip whose peak is below [`LIGHT_LOAD`] (¼) of ANALYN's is reported with its
-//!   length shortened by p0_i/(¼ p_ANALYN,i) and its peak raised by the inverse (force kept),
-//!   so that the strip's area vanishes with its load.
+//!   u = (p0/(πE*a)) ∫∫ √(a² − x²)/√(x² + y²) = y_j G_ij, [`ScaledStripIntegral`]).
+//! * **C3** complementarity on every strip the rigid bodies overlap (δ − f_i > 0): y_i ≥ 0,
+//!   u_i = δ − f_i where y_i > 0, u_i ≥ δ − f_i where y_i = 0.
+//! * **C4** a_i² = π y_i/r_i (C1 with C2), N = Σ F_i.
 //!
-//! Scaled by strip force, far strips couple symmetrically (G_ij → (π/2) ln((k + ½)/(k − ½)),
-//! k = |i − j|, the point-load field F/(πE*d)) and the diagonal grows like π ln(Δs/a_j) as
-//! a_j → 0. That alone makes an entering strip's load vanish only like 1/ln(1/a_j): where
-//! ANALYN's outline is narrower than the coupled pressure wants (the others' displacement at the
-//! entering strip falls short of δ − f_j), the strip took a finite load within 1e−12 m of wheel
-//! height (measured on S1002/UIC60 flange contact: N fell by 84 N of 84 kN, p0 17 GPa). The
-//! bound y_max,i ∝ p_ANALYN,i a_i ∝ δ_loc,i makes the load start from zero in proportion to
-//! δ_loc, so N(δ) and the pose dependence are continuous; on a Hertz gap it is never reached
-//! (the two peaks agree). G is not symmetric where strips are close (it depends on the column's
-//! a_j); its symmetric part is positive definite on every tested geometry, which makes G a
-//! P-matrix and the bounded complementarity problem's solution unique (tested).
+//! For fixed half-lengths C2–C3 is a linear complementarity problem; C4 closes the loop. The
+//! fixed point of the half-lengths is solved in ln a_i (below). A strip entering contact has
+//! y_i → 0 and a_i ∝ √y_i → 0; its own displacement y_i G_ii ~ y_i ln(1/y_i) vanishes with it,
+//! so its load starts from zero and N(δ) and the pose dependence are continuous without a peak
+//! bound or a length floor. On a Hertz gap r_i is the patch's Hertz p0/(E* a), so Hertz's a(y)
+//! and p(y) satisfy C1 and C4, and C3 up to the collocation's midpoint rule in y. G is not
+//! symmetric (it depends on the column's a_j); its symmetric part is positive definite at every
+//! tested solution, which makes G a P-matrix and C3's solution at the final half-lengths unique
+//! (tested).
 //!
 //! # Choices (ours)
 //!
-//! * Solver: block principal pivoting (Júdice–Pires: flip every infeasible strip between free,
-//!   unloaded and bounded while their number falls, three more tries, then Murty's least-index
-//!   rule), warm-started from the previous solve's states, each step a partial-pivoting LU of
-//!   the free block on fixed buffers. If the pivoting exceeds its iteration bound or a block is
-//!   singular, projected Gauss–Seidel to 1e−12 takes over; both events are counted
+//! * The half-lengths: Newton's method in ln a_i on the loaded set after each solve of C2–C3
+//!   (the derivative of G from KP6's I(1, T) = Ĵ'(T) in closed form, once per column and
+//!   offset; a step changes ln a_i by at most [`STEP_LIMIT`]; a plain step x_i ← ln √(π y_i/r_i)
+//!   if the Newton matrix is singular), until every loaded strip's residual is below
+//!   [`LENGTH_TOL`] with the loaded set unchanged, or [`LENGTH_ITERATIONS`] solves (counted,
+//!   [`CoupledStrips::unsettled`]). A cold start takes a_i = √((δ − f_i)/((1 + α_i)A_i)) with B
+//!   floored at B_min as ANALYN's (4–7 solves on the test gaps); a step starts from the previous
+//!   step's lengths scaled by √((δ − f_i)/(δ − f_i)_previous) and its states (one solve on a
+//!   steady pose, 2–5 while the pose changes).
+//! * C3 by block principal pivoting (Júdice–Pires: flip every infeasible strip between free and
+//!   unloaded while their number falls, three more tries, then Murty's least-index rule),
+//!   warm-started from the previous solve's states, each step a partial-pivoting LU of the free
+//!   block on fixed buffers. If the pivoting exceeds its iteration bound or a block is singular,
+//!   projected Gauss–Seidel to 1e−12 takes over; both events are counted
 //!   ([`CoupledStrips::fallbacks`], [`CoupledStrips::unconverged`]), never hidden.
 //! * Ĵ from a table in ln T (one cubic interpolation; ln((k + ½)Δs) is prepared per strip
-//!   offset and ln a_j per column), the far-field series where a strip is more than 64 of its
-//!   half-lengths away ([`ScaledStripIntegral::far_difference`]).
+//!   offset), the far-field series where a strip is more than 64 of its half-lengths away
+//!   ([`ScaledStripIntegral::far_difference`]); a column's entries once per offset k.
 //!
 //! # Known limits
 //!
 //! * The coupling uses the strips' centre lines x = 0: the small offsets x_c,i between strips
-//!   under yaw are neglected in G (the pressure itself is placed at x_c,i). Collocating at one
-//!   point of a long strip overstates a short neighbour's effect on it; the SPREAD floor limits
-//!   that for adjacent strips only (it leaves the Hertz convergence intact), so a short strip
-//!   two or more strips away from a much longer one still acts at its own length.
-//! * κ = 2 (C3), ½ (C2) and ¼ (C5) are our choices, set for continuity and a monotone N(δ) on
-//!   wheel–rail geometry (measured where they were needed), not fitted to reference data.
-//! * The patch's outline is ANALYN's (A1): where the coupled pressure would extend beyond it
-//!   the strips at the outline hold their peak at the bound κ p_ANALYN and the rest of the load
-//!   moves inwards; the area and the equivalent ellipse are ANALYN's. κ = 2 is our choice (a
-//!   bound, not a fit: the tests and the validation never meet it in the patch's interior).
-//! * Strip discretisation: a_i constant across a strip, collocation at the strip centre
-//!   (errors O(Δs/b), measured in the tests).
+//!   under yaw are neglected in G (the pressure itself is placed at x_c,i). One collocation
+//!   point per strip (errors O(Δs/b), measured in the tests).
+//! * r_i is the local Hertz ellipse's ratio, not the curvature condition along x of the coupled
+//!   displacement: the strip lengths are as good as that ratio (against the exact half-space on
+//!   S1002/UIC60, −1…+6 mm: area −2.5…+2.2 %; Manchester A-2.2's flange states: −6…−8 %).
+//! * A changing pose costs 2–5 solves of C2–C3 per normal solve (a steady pose one): on the
+//!   hunting wheelset 5.1 M instructions per wheelset solve, 11.7 × ANALYN's (1.66 × steady).
+//! * The fixed point of C1–C4 is not proven unique: on a two-region gap (`two_wells(120)` of
+//!   the tests) two iteration schemes settled at normal forces 0.4 % apart; warm and cold starts
+//!   agree on the tested sequences (1e−9).
 //!
 //! `prepare` and `solve` use buffers sized at construction ([`MAX_STRIPS`]): no allocation, no
 //! panic, no NaN for any finite geometry and any δ.
@@ -74,9 +75,8 @@
 use std::f64::consts::PI;
 
 use crate::geometry::strips::{PerStrip, StripGeometry, MAX_STRIPS};
-use crate::normal::analyn::Analyn;
-use crate::normal::kernel::ScaledStripIntegral;
-use crate::normal::shape::HertzShapeTable;
+use crate::normal::kernel::{inner_integral, ScaledStripIntegral};
+use crate::normal::shape::{HertzShapeTable, SHAPE_TABLE_RANGE};
 use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
 
@@ -90,48 +90,40 @@ const BLOCK_TRIES: usize = 3;
 /// Projected Gauss–Seidel sweeps of the fallback.
 const PGS_SWEEPS: usize = 20_000;
 
-/// Bound of a strip's peak pressure as a multiple of ANALYN's on the same strip (C3): never
-/// reached on a Hertz gap (the two agree there), it makes a strip entering contact take its load
-/// from zero in proportion to δ_loc (ANALYN's peak ∝ √δ_loc times a_i ∝ √δ_loc) where the
-/// coupling alone would give it a finite load at once.
-pub const PEAK_BOUND: f64 = 2.0;
+/// Most solves of C2–C3 per normal solve while the half-lengths settle.
+const LENGTH_ITERATIONS: usize = 100;
 
-/// Shortest half-length with which a strip's load acts on a neighbouring (adjacent) strip's
-/// centre line, as a fraction of that strip's own half-length (C2): a load much shorter than
-/// the neighbour would otherwise stand, through the neighbour's single collocation point at
-/// x = 0, for its whole length, and a short strip entering next to a long one would unload it
-/// by more than it takes (N(δ) falling: measured on S1002/UIC60 flange contact).
-const SPREAD: f64 = 0.5;
+/// Largest change of ln a_i in one update.
+const STEP_LIMIT: f64 = 1.0;
 
-/// Peak pressure, as a fraction of ANALYN's on the same strip, below which a strip's reported
-/// length shrinks in proportion to its peak (C5), keeping its force: a strip whose load the
-/// coupling has driven to nearly nothing then also has nearly no length, so the area and the
-/// equivalent ellipse of the tangential problem do not jump when the strip's load starts from
-/// or returns to zero at a finite ANALYN length (measured: FaStrip's creep force's vertical
-/// component jumped by 200 N of 6 kN in S1002/UIC60 flange contact).
-const LIGHT_LOAD: f64 = 0.25;
+/// Relative change of every loaded strip's half-length below which they have settled.
+const LENGTH_TOL: f64 = 1e-10;
 
 /// The complementarity state of a candidate strip (C3).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 enum Load {
-    /// 0 < y < y_max, u = δ − f.
+    /// y > 0, u = δ − f.
     #[default]
     Free,
     /// y = 0, u ≥ δ − f.
     Unloaded,
-    /// y = y_max, u ≤ δ − f.
-    Bounded,
 }
 
 /// Coupled strips (docs/theory.md §5.10). See the module documentation.
 #[derive(Debug, Clone)]
 pub struct CoupledStrips {
-    /// ANALYN's prepared strips: the half-lengths a_i (C1).
-    analyn: Analyn,
+    /// Per strip: whether it can carry load (A_i finite and positive, f_i finite), its local
+    /// Hertz ratio r_i = p0/(E* a) [1/m] (C1) and (1 + α_i)A_i with B floored as ANALYN's (the
+    /// cold start's half-length).
+    active: PerStrip<bool>,
+    strip_ratio: PerStrip<f64>,
+    seed_coeff: PerStrip<f64>,
     /// Ĵ, tabulated at construction.
     kernel: ScaledStripIntegral,
     /// Strips prepared.
     n: usize,
+    /// Candidates of the last solve.
+    m: usize,
     /// ln((k + ½)Δs) per strip offset k.
     log_edge: PerStrip<f64>,
     /// (k + ½)Δs per strip offset k [m].
@@ -142,16 +134,23 @@ pub struct CoupledStrips {
     /// load y_i and its bound, residual u_i − (δ − f_i), state; Ĵ at a column's strip edges.
     strip: PerStrip<usize>,
     half: PerStrip<f64>,
+    /// Per candidate, the residual of C4, ln √(π y/ratio) − ln a.
+    residual_log: PerStrip<f64>,
     rhs: PerStrip<f64>,
     load: PerStrip<f64>,
     residual: PerStrip<f64>,
-    bound: PerStrip<f64>,
-    peak: PerStrip<f64>,
     state: PerStrip<Load>,
-    log_half: PerStrip<f64>,
     edge_integral: PerStrip<f64>,
-    /// States of the last solve, per strip (the warm start).
+    column: PerStrip<f64>,
+    /// Per candidate: the local Hertz ratio p0/(E* a) [1/m] (C1) and whether it was loaded at
+    /// the previous half-lengths.
+    ratio: PerStrip<f64>,
+    loaded: PerStrip<bool>,
+    /// States and half-lengths of the last solve, per strip (the warm start).
     warm: PerStrip<Load>,
+    warm_half: PerStrip<f64>,
+    /// δ − f_i of the last solve per strip [m].
+    warm_rhs: PerStrip<f64>,
     /// G of the candidates (row stride MAX_STRIPS) and the block being factorised.
     matrix: Vec<f64>,
     block: Vec<f64>,
@@ -161,6 +160,9 @@ pub struct CoupledStrips {
     /// Solves that needed the Gauss–Seidel fallback, and of them those that did not converge.
     fallbacks: u64,
     unconverged: u64,
+    /// Solves of C2–C3 in all, and steps whose half-lengths did not settle.
+    length_solves: u64,
+    unsettled: u64,
 }
 
 impl Default for CoupledStrips {
@@ -173,29 +175,37 @@ impl CoupledStrips {
     /// The model with its kernel table and buffers (allocates once, here).
     pub fn new() -> Self {
         Self {
-            analyn: Analyn::default(),
+            active: PerStrip::default(),
+            strip_ratio: PerStrip::default(),
+            seed_coeff: PerStrip::default(),
             kernel: ScaledStripIntegral::new(),
             n: 0,
+            m: 0,
             log_edge: PerStrip::default(),
             edge: PerStrip::default(),
             log_ratio: PerStrip::default(),
             strip: PerStrip::default(),
             half: PerStrip::default(),
+            residual_log: PerStrip::default(),
             rhs: PerStrip::default(),
             load: PerStrip::default(),
             residual: PerStrip::default(),
-            bound: PerStrip::default(),
-            peak: PerStrip::default(),
             state: PerStrip::default(),
-            log_half: PerStrip::default(),
             edge_integral: PerStrip::default(),
+            column: PerStrip::default(),
+            ratio: PerStrip::default(),
+            loaded: PerStrip::default(),
             warm: PerStrip::default(),
+            warm_half: PerStrip::default(),
+            warm_rhs: PerStrip::default(),
             matrix: vec![0.0; MAX_STRIPS * MAX_STRIPS],
             block: vec![0.0; MAX_STRIPS * MAX_STRIPS],
             block_index: PerStrip::default(),
             block_rhs: PerStrip::default(),
             fallbacks: 0,
             unconverged: 0,
+            length_solves: 0,
+            unsettled: 0,
         }
     }
 
@@ -210,56 +220,122 @@ impl CoupledStrips {
         self.unconverged
     }
 
-    /// The last solve's candidates (test access): state, load y_i and its bound [m], residual
+    /// Solves of the complementarity problem (C2–C3) since construction, over all steps: one
+    /// per update of the half-lengths.
+    pub fn length_solves(&self) -> u64 {
+        self.length_solves
+    }
+
+    /// Steps whose half-lengths had not settled after [`LENGTH_ITERATIONS`] solves (their last
+    /// iterate was used).
+    pub fn unsettled(&self) -> u64 {
+        self.unsettled
+    }
+
+    /// The last solve's candidates (test access): state, load y_i [m], residual
     /// u_i − (δ − f_i) [m].
     #[cfg(test)]
-    fn candidates(&self, m: usize) -> impl Iterator<Item = (Load, f64, f64, f64)> + '_ {
-        (0..m).map(|r| (self.state[r], self.load[r], self.bound[r], self.residual[r]))
+    fn candidates(&self, m: usize) -> impl Iterator<Item = (Load, f64, f64)> + '_ {
+        (0..m).map(|r| (self.state[r], self.load[r], self.residual[r]))
+    }
+
+    /// One update of the loaded candidates' half-lengths towards C4 after a solve of C2–C3;
+    /// `true` once every loaded strip's residual R_i = ln √(π y_i/r_i) − ln a_i is below
+    /// [`LENGTH_TOL`] (and the loaded set unchanged). Newton's step in x = ln a on the loaded set
+    /// L: with G y = δ − f on L, ∂y/∂x_j = −G⁻¹ D e_j, D_ij = y_j ∂G_ij/∂x_j, so
+    /// (D + 2 G Y) Δx = 2 G Y R (Y = diag y); each Δx_i within ±[`STEP_LIMIT`]. A singular
+    /// Newton matrix falls back to the plain step x_i ← ln √(π y_i/r_i).
+    fn settle_lengths(&mut self, m: usize) -> bool {
+        let mut change: f64 = 0.0;
+        let mut size = 0;
+        for r in 0..m {
+            let y = self.load[r];
+            let loaded = y > 0.0;
+            if loaded != self.loaded[r] {
+                change = f64::INFINITY;
+            }
+            self.loaded[r] = loaded;
+            if loaded {
+                let g = 0.5 * (PI * y / self.ratio[r]).ln();
+                self.residual_log[r] = g - self.half[r].ln();
+                change = change.max(self.residual_log[r].exp_m1().abs());
+                self.block_index[size] = r;
+                size += 1;
+            }
+        }
+        if change <= LENGTH_TOL {
+            return true;
+        }
+        let (first, last) = (self.block_index[0], self.block_index[size - 1]);
+        for q in 0..size {
+            let c = self.block_index[q];
+            let (a, y) = (self.half[c], self.load[c]);
+            let j = self.strip[c];
+            // d/d ln a of Ĵ((k + ½)Δs/a) = −T I(1, T), once per offset k.
+            let far = self.strip[first]
+                .abs_diff(j)
+                .max(self.strip[last].abs_diff(j));
+            for k in 0..=far {
+                let t = self.edge[k] / a;
+                self.edge_integral[k] = -t * inner_integral(1.0, t);
+            }
+            for (p, &r) in self.block_index[..size].iter().enumerate() {
+                let k = self.strip[r].abs_diff(j);
+                let derivative = if k == 0 {
+                    2.0 * self.edge_integral[0]
+                } else {
+                    self.edge_integral[k] - self.edge_integral[k - 1]
+                };
+                let g = self.matrix[r * MAX_STRIPS + c];
+                self.block[p * MAX_STRIPS + q] = y * (derivative + 2.0 * g);
+            }
+        }
+        for p in 0..size {
+            let r = self.block_index[p];
+            let row = &self.matrix[r * MAX_STRIPS..r * MAX_STRIPS + m];
+            self.block_rhs[p] = 2.0
+                * self.block_index[..size]
+                    .iter()
+                    .map(|&c| row[c] * self.load[c] * self.residual_log[c])
+                    .sum::<f64>();
+        }
+        let newton = lu_solve(&mut self.block, size, &mut self.block_rhs[..size]);
+        for p in 0..size {
+            let r = self.block_index[p];
+            let step = if newton {
+                self.block_rhs[p]
+            } else {
+                self.residual_log[r]
+            };
+            self.half[r] *= step.clamp(-STEP_LIMIT, STEP_LIMIT).exp();
+        }
+        false
     }
 
     /// G of the `m` candidates (C2) into `matrix`. Column c's strip acts with its own
-    /// half-length a_c (Ĵ at the column's strip edges, computed once), on an adjacent row strip
-    /// with max(a_c, [`SPREAD`] a_r).
+    /// half-length a_c: Ĵ at its strip edges and their differences once per column and offset.
     fn assemble(&mut self, m: usize) {
-        for r in 0..m {
-            self.log_half[r] = self.half[r].ln();
-        }
         for c in 0..m {
             let a = self.half[c];
-            let log_a = self.log_half[c];
+            let log_a = a.ln();
             let j = self.strip[c];
             let far = (self.strip[0].abs_diff(j)).max(self.strip[m - 1].abs_diff(j));
             for k in 0..=far {
                 let t = self.edge[k] / a;
                 self.edge_integral[k] = self.kernel.at_log(t, self.log_edge[k] - log_a);
             }
-            for r in 0..m {
-                let k = self.strip[r].abs_diff(j);
-                let spread = SPREAD * self.half[r];
-                let value = if k == 0 {
-                    2.0 * self.edge_integral[0]
-                } else if k > 1 || spread <= a {
-                    self.strip_difference(k, a, |k| self.edge_integral[k])
+            self.column[0] = 2.0 * self.edge_integral[0];
+            for k in 1..=far {
+                self.column[k] = if self.edge[k - 1] >= self.kernel.t_max() * a {
+                    let (t_lo, t_hi) = (self.edge[k - 1] / a, self.edge[k] / a);
+                    ScaledStripIntegral::far_difference(t_lo, t_hi, self.log_ratio[k])
                 } else {
-                    let log_spread = SPREAD.ln() + self.log_half[r];
-                    self.strip_difference(k, spread, |k| {
-                        self.kernel
-                            .at_log(self.edge[k] / spread, self.log_edge[k] - log_spread)
-                    })
+                    self.edge_integral[k] - self.edge_integral[k - 1]
                 };
-                self.matrix[r * MAX_STRIPS + c] = value;
             }
-        }
-    }
-
-    /// Ĵ((k + ½)Δs/c) − Ĵ((k − ½)Δs/c) for k ≥ 1 with `edge_integral`(k) = Ĵ((k + ½)Δs/c):
-    /// the far-field series once the nearer edge is beyond the table.
-    fn strip_difference(&self, k: usize, c: f64, edge_integral: impl Fn(usize) -> f64) -> f64 {
-        if self.edge[k - 1] >= self.kernel.t_max() * c {
-            let (t_lo, t_hi) = (self.edge[k - 1] / c, self.edge[k] / c);
-            ScaledStripIntegral::far_difference(t_lo, t_hi, self.log_ratio[k])
-        } else {
-            edge_integral(k) - edge_integral(k - 1)
+            for r in 0..m {
+                self.matrix[r * MAX_STRIPS + c] = self.column[self.strip[r].abs_diff(j)];
+            }
         }
     }
 
@@ -268,10 +344,7 @@ impl CoupledStrips {
     fn solve_free(&mut self, m: usize) -> bool {
         let mut size = 0;
         for r in 0..m {
-            self.load[r] = match self.state[r] {
-                Load::Bounded => self.bound[r],
-                _ => 0.0,
-            };
+            self.load[r] = 0.0;
             if self.state[r] == Load::Free {
                 self.block_index[size] = r;
                 size += 1;
@@ -308,18 +381,16 @@ impl CoupledStrips {
     /// others push through the surface, a bounded strip whose surface would lift off.
     fn infeasible(&self, r: usize, tol: f64) -> bool {
         match self.state[r] {
-            Load::Free => self.load[r] < 0.0 || self.load[r] > self.bound[r],
+            Load::Free => self.load[r] < 0.0,
             Load::Unloaded => self.residual[r] < -tol,
-            Load::Bounded => self.residual[r] > tol,
         }
     }
 
     /// The state candidate `r` moves to when it is infeasible.
     fn flip(&mut self, r: usize) {
         self.state[r] = match self.state[r] {
-            Load::Free if self.load[r] < 0.0 => Load::Unloaded,
-            Load::Free => Load::Bounded,
-            Load::Unloaded | Load::Bounded => Load::Free,
+            Load::Free => Load::Unloaded,
+            Load::Unloaded => Load::Free,
         };
     }
 
@@ -363,7 +434,7 @@ impl CoupledStrips {
     /// sweep changes no load by more than 1e−12 of the largest.
     fn gauss_seidel(&mut self, m: usize) -> bool {
         for r in 0..m {
-            self.load[r] = self.load[r].clamp(0.0, self.bound[r]);
+            self.load[r] = self.load[r].max(0.0);
             if !self.load[r].is_finite() {
                 self.load[r] = 0.0;
             }
@@ -376,7 +447,7 @@ impl CoupledStrips {
                 let u: f64 = row.iter().zip(&self.load[..m]).map(|(g, y)| g * y).sum();
                 let diagonal = row[r];
                 let next = if diagonal > 0.0 {
-                    (self.load[r] - (u - self.rhs[r]) / diagonal).clamp(0.0, self.bound[r])
+                    (self.load[r] - (u - self.rhs[r]) / diagonal).max(0.0)
                 } else {
                     0.0
                 };
@@ -392,8 +463,6 @@ impl CoupledStrips {
         for r in 0..m {
             self.state[r] = if self.load[r] <= 0.0 {
                 Load::Unloaded
-            } else if self.load[r] >= self.bound[r] {
-                Load::Bounded
             } else {
                 Load::Free
             };
@@ -455,9 +524,28 @@ fn lu_solve(a: &mut [f64], size: usize, b: &mut [f64]) -> bool {
 
 impl StripModel for CoupledStrips {
     fn prepare(&mut self, geom: &StripGeometry, params: &NormalParams, table: &HertzShapeTable) {
-        self.analyn.prepare(geom, params, table);
         let n = geom.len();
         self.n = n;
+        let b_min = params.b_floor();
+        for i in 0..n {
+            let (a, b) = (geom.curv_a[i], geom.curv_b[i]);
+            self.active[i] = a.is_finite() && a > 0.0 && geom.f[i].is_finite();
+            if !self.active[i] {
+                continue;
+            }
+            // C1: the Hertz ellipse of (A_i, max(B_i, 0)), a line contact where B_i ≤ 0 (the
+            // table's end, A/B = e^16).
+            let u = if b > 0.0 && b.is_finite() {
+                (a / b).ln().min(SHAPE_TABLE_RANGE)
+            } else {
+                SHAPE_TABLE_RANGE
+            };
+            let shape = table.at_log_ratio(u);
+            let b_line = a * (-u).exp();
+            self.strip_ratio[i] = ((a + b_line) * a / shape.eps_x).sqrt() * shape.p0_coeff;
+            let b_seed = if b > b_min && b.is_finite() { b } else { b_min };
+            self.seed_coeff[i] = a / table.at_log_ratio((a / b_seed).ln()).eps_x;
+        }
         let ds = geom.ds;
         for k in 0..n {
             let edge = (k as f64 + 0.5) * ds;
@@ -483,55 +571,70 @@ impl StripModel for CoupledStrips {
             Some(n) => n.min(self.n),
             None => return 0.0,
         };
-        // C1: the candidates.
+        // C1: the candidates, every strip the rigid bodies overlap.
         let mut m = 0;
         let mut rhs_max: f64 = 0.0;
         for i in 0..n {
-            if let Some((a, peak)) = self.analyn.strip_at(i, delta) {
-                let rhs = delta - geom.f[i];
-                // y_max from p0 ≤ PEAK_BOUND p_ANALYN min(1, 2a/Δs) (p0 = πE* y/a,
-                // p_ANALYN = E* peak).
-                let bound = PEAK_BOUND * peak * a / PI * (2.0 * a / geom.ds).min(1.0);
-                if a > 0.0 && a.is_finite() && rhs.is_finite() && bound > 0.0 && bound.is_finite() {
-                    self.strip[m] = i;
-                    self.half[m] = a;
-                    self.rhs[m] = rhs;
-                    self.bound[m] = bound;
-                    self.peak[m] = peak;
-                    self.state[m] = self.warm[i];
-                    rhs_max = rhs_max.max(rhs.abs());
-                    m += 1;
-                }
+            let rhs = delta - geom.f[i];
+            let ratio = self.strip_ratio[i];
+            if !(self.active[i] && rhs > 0.0 && rhs.is_finite() && ratio > 0.0 && ratio.is_finite())
+            {
+                continue;
             }
+            let seed = if self.warm_half[i] > 0.0 {
+                // The previous length, scaled as a local Hertz length with the overlap.
+                self.warm_half[i] * (rhs / self.warm_rhs[i]).sqrt()
+            } else {
+                (rhs / self.seed_coeff[i]).sqrt()
+            };
+            if !(seed > 0.0 && seed.is_finite()) {
+                continue;
+            }
+            self.strip[m] = i;
+            self.half[m] = seed;
+            self.loaded[m] = self.warm[i] != Load::Unloaded;
+            self.ratio[m] = ratio;
+            self.rhs[m] = rhs;
+            self.state[m] = self.warm[i];
+            rhs_max = rhs_max.max(rhs);
+            m += 1;
         }
+        self.warm_half[..n].fill(0.0);
+        self.warm[..n].fill(Load::Free);
+        self.m = m;
         if m == 0 {
             return 0.0;
         }
-        // C2, C3.
-        self.assemble(m);
         let tol = FEASIBILITY_TOL * rhs_max;
-        if !self.pivot(m, tol) {
-            self.fallbacks += 1;
-            if !self.gauss_seidel(m) {
-                self.unconverged += 1;
+        // C2, C3 at the current half-lengths; then Newton's step on the loaded strips' C4.
+        let mut settled = false;
+        for _ in 0..LENGTH_ITERATIONS {
+            self.length_solves += 1;
+            self.assemble(m);
+            if !self.pivot(m, tol) {
+                self.fallbacks += 1;
+                if !self.gauss_seidel(m) {
+                    self.unconverged += 1;
+                }
+            }
+            if self.settle_lengths(m) {
+                settled = true;
+                break;
             }
         }
-        // C4, with the length of a lightly loaded strip shortened (C5).
-        self.warm[..n].fill(Load::Free);
+        if !settled {
+            self.unsettled += 1;
+        }
+        // C4.
         for r in 0..m {
             let i = self.strip[r];
             self.warm[i] = self.state[r];
             let y = self.load[r];
             if y > 0.0 {
                 let a = self.half[r];
-                let pmax = PI * y / a;
-                let shortening = (pmax / (LIGHT_LOAD * self.peak[r])).min(1.0);
-                out.set(
-                    i,
-                    a * shortening,
-                    params.e_star * pmax / shortening,
-                    geom.ds,
-                );
+                self.warm_half[i] = a;
+                self.warm_rhs[i] = self.rhs[r];
+                out.set(i, a, params.e_star * PI * y / a, geom.ds);
             }
         }
         out.normal_force()
@@ -581,12 +684,13 @@ mod tests {
 
     #[test]
     fn hertz_gap_converges_to_hertz() {
-        // A/B = 0.2, 1, 5 on strips not aligned with the patch ([−1.07 b, 1.13 b]). The half-lengths
-        // are Hertz's a(y) exactly (ANALYN's A1); the loads come from collocating the strips'
-        // displacements at their centres, a midpoint rule in y whose error is O((Δs/b)²):
-        // measured N/N_H − 1 = 3.2e−4, 1.0e−4, 1.8e−5 (A/B = 0.2) at 24, 48, 96 strips, pmax
-        // likewise. Bound 0.1 (Δs/b)² (8.4e−4 at 24 strips), and 96 strips at least 4× better
-        // than 24. The area is ANALYN's, its midpoint sum's edge error ≤ 2e−3 (analyn.rs).
+        // A/B = 0.2, 1, 5 on strips not aligned with the patch ([−1.07 b, 1.13 b]). Hertz's a(y),
+        // p(y) satisfy C1 and C4 exactly (r_i is the patch's Hertz p0/(E* a)); the loads come from
+        // collocating the strips' displacements at their centres, a midpoint rule in y whose error
+        // is O((Δs/b)²): measured N/N_H − 1 = 4.9e−4, 1.3e−4, 3.3e−5 (A/B = 1) at 24, 48, 96
+        // strips, pmax smaller. Bound 0.1 (Δs/b)² (8.4e−4 at 24 strips), and 96 strips at least 4×
+        // better than 24. The area, a midpoint sum of 2a_i Δs, within its edge strips' error
+        // ≤ 2e−3 (as ANALYN's, analyn.rs; measured ≤ 2.4e−4).
         for ratio in [0.2, 1.0, 5.0] {
             let (curv_a, h) = hertz(ratio);
             let mut errors = Vec::new();
@@ -610,10 +714,7 @@ mod tests {
                 assert!(e_n.abs() < bound && e_p.abs() < bound, "{n}");
                 assert!(e_area.abs() < 2e-3);
                 assert_eq!(model.fallbacks(), 0);
-                // The peak bound is never reached on a Hertz gap.
-                assert!(model
-                    .candidates(sum.strips_in_contact)
-                    .all(|c| c.0 != Load::Bounded));
+                assert_eq!(model.unsettled(), 0);
                 errors.push(e_n.abs().max(e_p.abs()));
             }
             assert!(errors[2] < 0.25 * errors[0]);
@@ -646,11 +747,12 @@ mod tests {
 
     #[test]
     fn solution_is_the_unique_complementary_one() {
-        // On a Hertz gap, two wells, the B-crossing family and a flattened gap: loads in
-        // [0, y_max]; residual u − (δ − f) ≥ −1e−12 (δ − f)_max where unloaded, ≤ 1e−12 (δ − f)_max
-        // at the bound, |residual| ≤ 1e−10 (δ − f)_max where free (the block solve's rounding);
-        // G's symmetric part positive definite (uniqueness); projected Gauss–Seidel from zero
-        // loads reaches the same loads.
+        // On a Hertz gap, two wells, the B-crossing family and a flattened gap: loads ≥ 0;
+        // residual u − (δ − f) ≥ −1e−12 (δ − f)_max where unloaded, |residual| ≤ 1e−10 (δ − f)_max
+        // where loaded (the block solve's rounding); G's symmetric part positive definite
+        // (uniqueness at the final half-lengths); projected Gauss–Seidel from zero loads reaches
+        // the same loads; every loaded strip's reported peak and half-length on its local Hertz
+        // ratio, p0 = ratio E* a (C1), within 1e−9 (the half-lengths settle to 1e−10).
         let (curv_a, h) = hertz(0.3);
         let cases = [
             (
@@ -668,25 +770,25 @@ mod tests {
             let (sol, force) = test_support::run(&mut model, geom, &params(), *delta);
             no_nan(&sol, force);
             assert!(force > 0.0);
-            let m = (0..geom.n)
-                .filter(|&i| model.analyn.strip_at(i, *delta).is_some())
-                .count();
+            let m = model.m;
             let scale = (0..m).map(|r| model.rhs[r]).fold(0.0, f64::max);
-            let (mut free, mut bounded) = (0, 0);
-            for (state, y, bound, residual) in model.candidates(m) {
-                assert!((0.0..=bound).contains(&y));
+            let mut free = 0;
+            for (state, y, residual) in model.candidates(m) {
                 match state {
                     Load::Free => {
                         free += 1;
-                        assert!(residual.abs() <= 1e-10 * scale, "{residual}");
+                        assert!(y >= 0.0 && residual.abs() <= 1e-10 * scale, "{residual}");
                     }
                     Load::Unloaded => {
                         assert!(y == 0.0 && residual >= -1e-12 * scale, "{residual}");
                     }
-                    Load::Bounded => {
-                        bounded += 1;
-                        assert!(y == bound && residual <= 1e-12 * scale, "{residual}");
-                    }
+                }
+            }
+            for r in 0..m {
+                let i = model.strip[r];
+                if sol.force[i] > 0.0 {
+                    let ratio = sol.pmax[i] / (params().e_star * sol.half_length[i]);
+                    assert!((ratio / model.ratio[r] - 1.0).abs() <= 1e-9, "strip {i}");
                 }
             }
             assert!(symmetric_part_is_positive_definite(&model, m));
@@ -697,26 +799,39 @@ mod tests {
             for (gs, pv) in model.load[..m].iter().zip(&pivoted) {
                 assert!((gs - pv).abs() <= 1e-9 * largest);
             }
-            eprintln!("{m} candidates, {free} free, {bounded} at the bound, N = {force:.1} N");
+            eprintln!(
+                "{m} candidates, {free} loaded, N = {force:.1} N, {} solves of C2–C3",
+                model.length_solves(),
+            );
             assert_eq!(model.fallbacks(), 0);
+            assert_eq!(model.unsettled(), 0);
         }
     }
 
     #[test]
     fn warm_start_does_not_change_the_solution() {
-        // The same δ sequence up and down on one model (warm) and on fresh models (cold): the
-        // final loaded set fixes the block solve, so the results agree to rounding.
+        // The same δ sequence up and down on one model (warm) and on fresh models (cold): both
+        // settle the half-lengths to 1e−10, so N agrees to 1e−9 (measured 4e−12).
         let geom = two_wells(80);
         let mut warm = CoupledStrips::default();
         warm.prepare(&geom, &params(), table());
         let mut out = StripSolution::default();
+        let mut worst: f64 = 0.0;
         for k in (0..60).chain((0..60).rev()) {
             let delta = 1e-6 * (1.0 + k as f64);
             let n_warm = warm.solve(&geom, &params(), table(), delta, &mut out);
             let (_, n_cold) = run(&geom, delta);
-            assert!((n_warm - n_cold).abs() <= 1e-12 * n_cold, "δ = {delta}");
+            let e = (n_warm - n_cold).abs() / n_cold;
+            worst = worst.max(e);
+            assert!(e <= 1e-9, "δ = {delta}: {e:e}");
         }
+        eprintln!(
+            "warm against cold: largest |ΔN|/N = {worst:.1e}, {} solves, {} unsettled",
+            warm.length_solves(),
+            warm.unsettled()
+        );
         assert_eq!(warm.fallbacks(), 0);
+        assert_eq!(warm.unsettled(), 0);
     }
 
     #[test]
@@ -737,7 +852,8 @@ mod tests {
         assert!(p_max > 0.0);
         for i in 0..n {
             let j = n - 1 - i;
-            assert_eq!(sol.half_length[i], sol_m.half_length[j]);
+            let a_max = sol.half_length.iter().copied().fold(0.0, f64::max);
+            assert!((sol.half_length[i] - sol_m.half_length[j]).abs() <= 1e-9 * a_max);
             assert!((sol.pmax[i] - sol_m.pmax[j]).abs() <= 1e-9 * p_max);
         }
         assert!((n1 - n2).abs() <= 1e-9 * n1);
@@ -802,8 +918,8 @@ mod tests {
         // N(δ) from below the first strip's entry through strips entering and a second region
         // appearing: non-decreasing; while every loaded region spans ≥ 3 strips no 0.5 % step of
         // δ raises N by more than the trend δ^{3/2} (× 1.0075) and a margin for the entering edge
-        // strips (measured ≤ 1.0121 on the Hertz gap, the two wells and the flattened gap at 24 strips):
-        // × 1.02. A region's first strips rise steeper (not bounded here).
+        // strips (measured ≤ 1.0097 on the Hertz gap, the two wells and the flattened gap at 24
+        // strips): × 1.02. A region's first strips rise steeper (not bounded here).
         for geom in [hertz_gap_48(), two_wells(60), flattened(24, 0.4e-3)] {
             let mut model = CoupledStrips::default();
             model.prepare(&geom, &params(), table());
@@ -840,7 +956,7 @@ mod tests {
         // The gap slid across the strips by two strip widths at fixed δ (strips entering and
         // leaving): the largest change between neighbouring shifts, bisected 40 times (to
         // 1e−12 of the strip width), falls below 1e−9 of N (a jump would stay; measured ~1e−15:
-        // an entering strip's load starts from zero ∝ δ_loc under the peak bound). And N stays
+        // an entering strip's load and length start from zero). And N stays
         // within the strip discretisation of its mean (1e−2).
         for geom_of in [
             (|e: f64| flattened(24, e)) as fn(f64) -> StripGeometry,

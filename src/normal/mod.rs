@@ -105,7 +105,8 @@ pub enum NormalModel {
     StripesAB,
     /// 6: ANALYN (`analyn`).
     Analyn,
-    /// 7: ANALYN's strips coupled through the half-space (`coupled_strips`).
+    /// 7: strips coupled through the half-space, lengths by the local Hertz ratio
+    /// (`coupled_strips`).
     CoupledStrips,
 }
 
