@@ -31,6 +31,8 @@ CONFIGS=(
   "STRIPES-A&B+FASTSIM 5 1 0"
   "ANALYN+FASTSIM 6 1 0"
   "ANALYN+FaStrip 6 3 0"
+  "coupled+FASTSIM 7 1 0"
+  "coupled+FaStrip,planar 7 3 1"
 )
 declare -A BASE BASE_CPU
 for MOTION in hunting steady; do
