@@ -62,7 +62,7 @@ use crate::error::InputError;
 use crate::geometry::strips::MAX_STRIPS;
 use crate::tangential::fastrip::{semi_ellipse_midpoint_ratio, StripGrid};
 use crate::tangential::fastsim::{
-    strip_outs, Creepage, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP,
+    strip_outs, Creepage, FastsimResult, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP,
 };
 use std::sync::Arc;
 
@@ -106,6 +106,20 @@ pub struct StripFastsimResult {
     pub frictional_power: f64,
     /// Largest |tangential traction| [Pa].
     pub max_traction: f64,
+}
+
+impl From<&FastsimResult> for StripFastsimResult {
+    /// The same quantities of FASTSIM on one ellipse.
+    fn from(t: &FastsimResult) -> Self {
+        Self {
+            fx: t.fx,
+            fy: t.fy,
+            mz: t.mz,
+            adhesion_fraction: t.adhesion_fraction,
+            frictional_power: t.frictional_power,
+            max_traction: t.max_traction,
+        }
+    }
 }
 
 /// One strip's sums (forces in N in the strip's own axes).

@@ -15,6 +15,7 @@ use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::groups::{group_bounds, groups_at};
 use crate::geometry::search::{ContactPoint, WheelOnRail};
 use crate::tangential::fastsim::EllipticContact;
+use crate::tangential::strip_fastsim::StripFastsimResult;
 use crate::wheelset::balance::{balance, ForceLaw, Guess, Root};
 
 /// Fraction of a patch group's depth at which its reference point is taken (see
@@ -250,12 +251,7 @@ pub(super) fn add_patch(
             let solved = PatchTangential {
                 normal_force: result.fn_,
                 weight,
-                fx: t.fx,
-                fy: t.fy,
-                mz: t.mz,
-                adhesion_fraction: t.adhesion_fraction,
-                frictional_power: t.frictional_power,
-                max_traction: t.max_traction,
+                solution: StripFastsimResult::from(&t),
                 tangential: nalgebra::Vector3::zeros(),
             };
             if let Tangential::Solve(memo) = tangential {
@@ -264,12 +260,7 @@ pub(super) fn add_patch(
             solved
         }
     };
-    result.fx = t.fx;
-    result.fy = t.fy;
-    result.mz = t.mz;
-    result.adhesion_fraction = t.adhesion_fraction;
-    result.frictional_power = t.frictional_power;
-    result.max_traction = t.max_traction;
+    result.set_tangential(&t.solution);
     let tangential = planar_tangential(side.sigma, gamma, result.fx, result.fy);
     Ok(store_patch(side.sigma, result, weight, tangential, out))
 }

@@ -59,7 +59,7 @@ use crate::normal::shape::HertzShapeTable;
 use crate::normal::{NormalModel, NormalParams, DEFAULT_B_SMOOTHING, DEFAULT_STRIPS};
 use crate::tangential::fastsim::{Creepage, Fastsim, FastsimSettings};
 use crate::tangential::patch::TangentialModel;
-use crate::tangential::strip_fastsim::{StripFastsim, TangentialStrip};
+use crate::tangential::strip_fastsim::{StripFastsim, StripFastsimResult, TangentialStrip};
 use balance::check_balance;
 use slots::assign_slots;
 use strip_side::{solve_strips, StripSettings, StripSide};
@@ -201,6 +201,19 @@ pub struct PatchResult {
     /// blended, `crate::geometry::groups`); `fn_`, `fx`, `fy`, `mz`, `area` and
     /// `frictional_power` include it [-].
     pub weight: f64,
+}
+
+impl PatchResult {
+    /// Takes the tangential solution's forces (contact axes), adhesion fraction, frictional
+    /// power and largest traction.
+    fn set_tangential(&mut self, t: &StripFastsimResult) {
+        self.fx = t.fx;
+        self.fy = t.fy;
+        self.mz = t.mz;
+        self.adhesion_fraction = t.adhesion_fraction;
+        self.frictional_power = t.frictional_power;
+        self.max_traction = t.max_traction;
+    }
 }
 
 /// Tangential traction in one element of a patch (forces of the rail on the wheel).

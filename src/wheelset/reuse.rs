@@ -32,6 +32,7 @@
 use nalgebra::Vector3;
 
 use crate::geometry::groups::MAX_GROUPS;
+use crate::tangential::strip_fastsim::StripFastsimResult;
 
 /// Largest change of a wheel's normal-force target between two creep passes, relative to the
 /// wheel load, across which the later pass reuses the earlier pass's tangential solution
@@ -45,12 +46,9 @@ pub(super) struct PatchTangential {
     pub normal_force: f64,
     /// The patch group's weight (identifies the patch within a step's layout).
     pub weight: f64,
-    pub fx: f64,
-    pub fy: f64,
-    pub mz: f64,
-    pub adhesion_fraction: f64,
-    pub frictional_power: f64,
-    pub max_traction: f64,
+    /// Its forces in its contact axes, adhesion fraction, frictional power and largest
+    /// traction (on a Hertz patch FASTSIM's, on a strip patch the strip solver's).
+    pub solution: StripFastsimResult,
     /// The tangential force in track axes [N] (unweighted; strip patches, whose strips have
     /// their own angles).
     pub tangential: Vector3<f64>,
@@ -64,17 +62,20 @@ impl PatchTangential {
         if !(ratio.is_finite() && ratio > 0.0) {
             return None;
         }
-        let exponent = force_exponent(self.fx.hypot(self.fy) / (mu * self.normal_force));
+        let s = &self.solution;
+        let exponent = force_exponent(s.fx.hypot(s.fy) / (mu * self.normal_force));
         let force = ratio.powf(exponent);
         Some(Self {
             normal_force,
             weight: self.weight,
-            fx: self.fx * force,
-            fy: self.fy * force,
-            mz: self.mz * ratio.powf(exponent + 1.0 / 3.0),
-            adhesion_fraction: self.adhesion_fraction,
-            frictional_power: self.frictional_power * force,
-            max_traction: self.max_traction * ratio.cbrt(),
+            solution: StripFastsimResult {
+                fx: s.fx * force,
+                fy: s.fy * force,
+                mz: s.mz * ratio.powf(exponent + 1.0 / 3.0),
+                adhesion_fraction: s.adhesion_fraction,
+                frictional_power: s.frictional_power * force,
+                max_traction: s.max_traction * ratio.cbrt(),
+            },
             tangential: self.tangential * force,
         })
     }
@@ -91,25 +92,14 @@ fn force_exponent(saturation: f64) -> f64 {
 }
 
 /// The tangential solutions of a wheel's patches from the last pass that solved them.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 pub(super) struct TangentialMemo {
     patches: [PatchTangential; MAX_GROUPS],
     n: usize,
-    /// The pass's normal-force target [N] (NaN: nothing recorded).
-    target: f64,
+    /// The pass's normal-force target [N] (None: nothing recorded).
+    target: Option<f64>,
     /// Whether a pass of this step has reused a record (at most one does).
     spent: bool,
-}
-
-impl Default for TangentialMemo {
-    fn default() -> Self {
-        Self {
-            patches: [PatchTangential::default(); MAX_GROUPS],
-            n: 0,
-            target: f64::NAN,
-            spent: false,
-        }
-    }
 }
 
 impl TangentialMemo {
@@ -117,7 +107,7 @@ impl TangentialMemo {
     /// without a load target, never reused).
     pub fn start(&mut self, target: f64) {
         self.n = 0;
-        self.target = target;
+        self.target = Some(target);
     }
 
     /// Records the next patch's solution.
@@ -132,7 +122,10 @@ impl TangentialMemo {
     /// recorded solutions — within [`REUSE_WINDOW`], and once per step: the passes after a
     /// reused one (which did not converge) solve again — and marks the step's reuse spent if so.
     pub fn take(&mut self, target: f64, load: f64) -> bool {
-        let allowed = !self.spent && (target - self.target).abs() <= REUSE_WINDOW * load;
+        let allowed = !self.spent
+            && self
+                .target
+                .is_some_and(|recorded| (target - recorded).abs() <= REUSE_WINDOW * load);
         self.spent |= allowed;
         allowed
     }
@@ -178,15 +171,18 @@ mod tests {
         let p = PatchTangential {
             normal_force: 1e4,
             weight: 1.0,
-            fx: 100.0,
-            fy: -200.0,
-            mz: 3.0,
-            adhesion_fraction: 0.4,
-            frictional_power: 50.0,
-            max_traction: 1e8,
+            solution: StripFastsimResult {
+                fx: 100.0,
+                fy: -200.0,
+                mz: 3.0,
+                adhesion_fraction: 0.4,
+                frictional_power: 50.0,
+                max_traction: 1e8,
+            },
             tangential: Vector3::new(100.0, -190.0, 20.0),
         };
-        let s = p.scaled(8e4, 0.3).unwrap();
+        let scaled = p.scaled(8e4, 0.3).unwrap();
+        let s = &scaled.solution;
         // 8 = 2³: forces × 2^{3α}, the moment × 2^{3α+1}, the traction bound × 2, with α of
         // the saturation |F|/(μN) = √5·100/3000.
         let alpha = force_exponent(100.0 * 5f64.sqrt() / 3e3);
@@ -197,7 +193,7 @@ mod tests {
         assert!((s.mz / (3.0 * 2.0 * f) - 1.0).abs() < 1e-14);
         assert!((s.max_traction / 2e8 - 1.0).abs() < 1e-14);
         assert_eq!(s.adhesion_fraction, 0.4);
-        assert!((s.tangential.z / (20.0 * f) - 1.0).abs() < 1e-14);
+        assert!((scaled.tangential.z / (20.0 * f) - 1.0).abs() < 1e-14);
         assert!(p.scaled(0.0, 0.3).is_none());
         // The exponent's ends: the linear theory and full slip.
         assert!((force_exponent(0.0) - 2.0 / 3.0).abs() < 1e-15);

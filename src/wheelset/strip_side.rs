@@ -38,7 +38,7 @@ use crate::normal::strips::{PatchSummary, StripSolution};
 use crate::normal::{NormalModel, NormalParams, StripModel};
 use crate::tangential::fastsim::Creepage;
 use crate::tangential::patch::{strip_flexibilities, EquivalentEllipse, TangentialModel};
-use crate::tangential::strip_fastsim::TangentialStrip;
+use crate::tangential::strip_fastsim::{StripFastsimResult, TangentialStrip};
 use crate::wheelset::balance::{balance, ForceLaw, Guess, Root, LOAD_TOLERANCE};
 
 /// One non-elliptic patch: its plane, strips, model state, solution and weight.
@@ -460,11 +460,8 @@ pub(super) fn strip_patch_result(
             t
         }
     };
-    let result = PatchResult {
+    let mut result = PatchResult {
         fn_: summary.normal_force,
-        fx: t.fx,
-        fy: t.fy,
-        mz: t.mz,
         area: summary.area,
         pmax: summary.pmax,
         a: equivalent.contact.a,
@@ -477,13 +474,12 @@ pub(super) fn strip_patch_result(
         rolling_radius: reference.rolling_radius,
         penetration: patch.approach(dz),
         creepage,
-        adhesion_fraction: t.adhesion_fraction,
-        frictional_power: t.frictional_power,
-        max_traction: t.max_traction,
         curv_a: reference.curv_a,
         curv_b: reference.curv_b,
         weight: 1.0,
+        ..PatchResult::default()
     };
+    result.set_tangential(&t.solution);
     Ok((result, t.tangential))
 }
 
@@ -579,12 +575,7 @@ fn solve_strip_tangential(
     Ok(PatchTangential {
         normal_force: summary.normal_force,
         weight: patch.weight,
-        fx: t.fx,
-        fy: fy_patch,
-        mz: t.mz,
-        adhesion_fraction: t.adhesion_fraction,
-        frictional_power: t.frictional_power,
-        max_traction: t.max_traction,
+        solution: StripFastsimResult { fy: fy_patch, ..t },
         tangential,
     })
 }
