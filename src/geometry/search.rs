@@ -1114,7 +1114,7 @@ impl WheelOnRail {
     fn unimodal_lowest_point(&self, w: f64, p: &Prepared) -> WheelPoint {
         let r0 = self.setup.wheel_radius;
         let offset = self.setup.taping_line_offset();
-        let (sin, cos, sin_tan) = (p.sin_yaw, p.cos_yaw, p.sin_tan);
+        let (cos, sin_tan) = (p.cos_yaw, p.sin_tan);
         let mut l = w * p.inv_cos;
         let mut piece = self.wheel.piece_at(l - offset);
         let mut at = piece.eval(l - offset);
@@ -1133,7 +1133,7 @@ impl WheelOnRail {
                 }
             }
         }
-        let spread = self.lead_bracket(p) * (sin / cos).abs();
+        let spread = self.lead_bracket(p) * p.tan_yaw.abs();
         let (mut lo, mut hi) = (l - spread, l + spread);
         for _ in 0..WHEEL_NEWTON_STEPS {
             let (z, dz, d2z) = at;
@@ -1209,7 +1209,7 @@ impl WheelOnRail {
     fn lead_bracket(&self, p: &Prepared) -> f64 {
         let half_radius = 0.5 * self.setup.wheel_radius;
         if p.single_lowest_point {
-            (1.5 * self.wheel_lead_bound * (p.sin_yaw / p.cos_yaw).abs()).min(half_radius)
+            (1.5 * self.wheel_lead_bound * p.tan_yaw.abs()).min(half_radius)
         } else {
             half_radius
         }
@@ -1260,7 +1260,7 @@ impl WheelOnRail {
             - (origin - p.lateral) * p.sin_roll
             - (y_lo * p.sin_roll).max(y_hi * p.sin_roll);
         let offset = self.setup.taping_line_offset();
-        let tan_yaw = p.sin_yaw / p.cos_yaw;
+        let tan_yaw = p.tan_yaw;
         let lead = self.lead_bracket(p);
         let (l_lo, l_hi) = if p.sin_yaw == 0.0 {
             (wa, wb)

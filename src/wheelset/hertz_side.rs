@@ -78,7 +78,7 @@ pub(super) fn evaluate_side(
     let scan = side.geometry.scan_range();
     let b_floor = ctx.strips.params.b_floor();
     side.n_ellipses = 0;
-    for group in layout.groups() {
+    for (key, group) in layout.groups().iter().enumerate() {
         let Some((reference, patch)) = group_ellipse(
             &side.geometry,
             ctx,
@@ -93,7 +93,7 @@ pub(super) fn evaluate_side(
             continue;
         };
         if side.n_ellipses < MAX_GROUPS {
-            side.ellipses[side.n_ellipses] = (reference, patch, group.weight);
+            side.ellipses[side.n_ellipses] = (reference, patch, group.weight, key);
             side.n_ellipses += 1;
         }
     }
@@ -117,14 +117,14 @@ pub(super) fn complete_ellipses(
     };
     let mut upward = 0.0;
     for k in 0..side.n_ellipses {
-        let (reference, patch, weight) = side.ellipses[k];
+        let (reference, patch, weight, key) = side.ellipses[k];
         upward += add_patch(
             side,
             ctx,
             input,
             &reference,
             patch,
-            weight,
+            (weight, key),
             out,
             &mut tangential,
         )?;
@@ -196,9 +196,10 @@ pub(super) fn group_ellipse(
 
 /// Completes a patch whose normal solution is in `result` (normal force, size, approach): the
 /// reference point's position and angle, creepages, FASTSIM on the patch's (equivalent)
-/// ellipse (or the recorded solution scaled, [`Tangential::Reuse`]); stores it with its
-/// `weight` in the next entry of `out.groups`, adds its force to `out.force` (track axes) and
-/// returns its upward force on the wheel [N].
+/// ellipse (or the recorded solution scaled, [`Tangential::Reuse`]); stores it with its group's
+/// weight in the next entry of `out.groups`, adds its force to `out.force` (track axes) and
+/// returns its upward force on the wheel [N]. `(weight, key)`: the group's weight and its index
+/// in the step's layout ([`PatchTangential::key`]).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn add_patch(
     side: &mut Side,
@@ -206,7 +207,7 @@ pub(super) fn add_patch(
     input: &WheelsetInput,
     reference: &ContactPoint,
     mut result: PatchResult,
-    weight: f64,
+    (weight, key): (f64, usize),
     out: &mut SideResult,
     tangential: &mut Tangential,
 ) -> Result<f64, InputError> {
@@ -239,9 +240,7 @@ pub(super) fn add_patch(
                 out,
             ))
         }
-        Tangential::Reuse(memo) => {
-            memo.scaled(out.n_groups, weight, result.fn_, ctx.material.friction)
-        }
+        Tangential::Reuse(memo) => memo.scaled(key, result.fn_, ctx.material.friction),
         Tangential::Solve(_) => None,
     };
     let t = match recorded {
@@ -250,7 +249,7 @@ pub(super) fn add_patch(
             let t = side.fastsim[out.n_groups].solve(&contact, &creepage, speed)?;
             let solved = PatchTangential {
                 normal_force: result.fn_,
-                weight,
+                key,
                 solution: StripFastsimResult::from(&t),
                 tangential: nalgebra::Vector3::zeros(),
             };
@@ -360,33 +359,25 @@ pub(super) fn hertz_side(
         // The side's patches belong to the root when the pass ends (evaluated last, or
         // evaluated again below).
         root = Some(balanced.root(target));
-        if !balanced.evaluated {
-            evaluate_side(
-                side,
-                ctx,
-                input,
-                balanced.lowering,
-                level,
-                out,
-                Tangential::None,
-            )?;
-        }
-        if !tangential {
-            return Ok(None);
-        }
         // A later pass whose target moved by little keeps the last solved tangential solution,
         // scaled, once per step ([`crate::wheelset::reuse`]).
-        let reused = k > 0
-            && ctx.settings.reuse_tangential
-            && side.n_ellipses == memo.len()
-            && memo.take(target, q);
-        let mode = if reused {
+        let reused = tangential && k > 0 && ctx.settings.reuse_tangential && memo.take(target, q);
+        let mode = if !tangential {
+            Tangential::None
+        } else if reused {
             Tangential::Reuse(&memo)
         } else {
             memo.start(target);
             Tangential::Solve(&mut memo)
         };
-        complete_ellipses(side, ctx, input, out, mode)?;
+        if balanced.evaluated {
+            complete_ellipses(side, ctx, input, out, mode)?;
+        } else {
+            evaluate_side(side, ctx, input, balanced.lowering, level, out, mode)?;
+        }
+        if !tangential {
+            return Ok(None);
+        }
         let tight = balanced.residual.abs() <= LOAD_TOLERANCE * target;
         Ok(Some(CreepPass {
             creep: creep_upward(out),

@@ -347,9 +347,9 @@ struct Side {
     last_y_rail: [f64; MAX_GROUPS],
     /// The last prescribed-load solution, the next one's starting point.
     warm: Option<WarmStart>,
-    /// The multi-Hertzian patches of the last normal solution: reference point, normal solution
-    /// and weight (`evaluate_side`).
-    ellipses: [(ContactPoint, PatchResult, f64); MAX_GROUPS],
+    /// The multi-Hertzian patches of the last normal solution: reference point, normal solution,
+    /// weight and the index of its group in the step's layout (`evaluate_side`).
+    ellipses: [(ContactPoint, PatchResult, f64, usize); MAX_GROUPS],
     n_ellipses: usize,
     /// For each entry of `SideResult::groups` of a strip model, its patch in `strips`.
     strip_of_group: [Option<usize>; MAX_GROUPS],
@@ -409,7 +409,7 @@ impl Wheelset {
                 tangential_strips: vec![TangentialStrip::default(); MAX_STRIPS],
                 last_y_rail: [0.0; MAX_GROUPS],
                 warm: None,
-                ellipses: [(ContactPoint::default(), PatchResult::default(), 0.0); MAX_GROUPS],
+                ellipses: [(ContactPoint::default(), PatchResult::default(), 0.0, 0); MAX_GROUPS],
                 n_ellipses: 0,
                 strip_of_group: [None; MAX_GROUPS],
                 slots: [None; MAX_PATCHES],

@@ -44,8 +44,10 @@ pub(super) const REUSE_WINDOW: f64 = 3e-6;
 pub(super) struct PatchTangential {
     /// Normal force the tangential problem was solved at [N] (unweighted).
     pub normal_force: f64,
-    /// The patch group's weight (identifies the patch within a step's layout).
-    pub weight: f64,
+    /// The patch within its wheel's layout of the step (a Hertz patch's group, a strip patch's
+    /// index among the strip patches): the same key, the same patch, whatever patches appear or
+    /// vanish beside it between passes.
+    pub key: usize,
     /// Its forces in its contact axes, adhesion fraction, frictional power and largest
     /// traction (on a Hertz patch FASTSIM's, on a strip patch the strip solver's).
     pub solution: StripFastsimResult,
@@ -67,7 +69,7 @@ impl PatchTangential {
         let force = ratio.powf(exponent);
         Some(Self {
             normal_force,
-            weight: self.weight,
+            key: self.key,
             solution: StripFastsimResult {
                 fx: s.fx * force,
                 fy: s.fy * force,
@@ -130,25 +132,14 @@ impl TangentialMemo {
         allowed
     }
 
-    /// Number of patches recorded.
-    pub fn len(&self) -> usize {
-        self.n
-    }
-
-    /// The recorded solution of the patch in output slot `slot` scaled to `normal_force` at
-    /// friction coefficient `mu`, if it is the same patch (same weight) and both forces are positive.
-    pub fn scaled(
-        &self,
-        slot: usize,
-        weight: f64,
-        normal_force: f64,
-        mu: f64,
-    ) -> Option<PatchTangential> {
-        let recorded = self.patches[..self.n].get(slot)?;
-        if recorded.weight != weight {
-            return None;
-        }
-        recorded.scaled(normal_force, mu)
+    /// The recorded solution of the patch `key` ([`PatchTangential::key`]) scaled to
+    /// `normal_force` at friction coefficient `mu`; `None` where that patch was not recorded or
+    /// either force is not positive (the patch then solves its tangential problem).
+    pub fn scaled(&self, key: usize, normal_force: f64, mu: f64) -> Option<PatchTangential> {
+        self.patches[..self.n]
+            .iter()
+            .find(|p| p.key == key)?
+            .scaled(normal_force, mu)
     }
 }
 
@@ -170,7 +161,7 @@ mod tests {
     fn scaling_follows_the_similarity_exponents() {
         let p = PatchTangential {
             normal_force: 1e4,
-            weight: 1.0,
+            key: 0,
             solution: StripFastsimResult {
                 fx: 100.0,
                 fy: -200.0,
@@ -209,16 +200,19 @@ mod tests {
         memo.start(4e4);
         memo.push(PatchTangential {
             normal_force: 4e4,
-            weight: 0.75,
+            key: 2,
             ..PatchTangential::default()
         });
         // Window 3e−6 of 40 kN: 0.12 N; once.
         assert!(!memo.take(4e4 + 0.2, 4e4));
         assert!(memo.take(4e4 + 0.1, 4e4));
         assert!(!memo.take(4e4 + 0.1, 4e4), "used once already");
-        assert!(memo.scaled(0, 0.75, 4.0001e4, 0.3).is_some());
-        assert!(memo.scaled(0, 0.5, 4e4, 0.3).is_none(), "another patch");
-        assert!(memo.scaled(1, 0.75, 4e4, 0.3).is_none(), "not recorded");
+        assert!(memo.scaled(2, 4.0001e4, 0.3).is_some());
+        assert!(
+            memo.scaled(0, 4e4, 0.3).is_none(),
+            "another patch, not recorded"
+        );
+        assert!(memo.scaled(2, 0.0, 0.3).is_none(), "no normal force");
         memo.start(4e4);
         assert!(
             !memo.take(4e4, 4e4),

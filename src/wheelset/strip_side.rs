@@ -385,7 +385,8 @@ pub(super) fn evaluate_strips(
             continue;
         }
         let slot = out.n_groups;
-        match strip_patch_result(side, ctx, input, patch, &summary, dz, slot, &mut tangential) {
+        let at = (slot, index);
+        match strip_patch_result(side, ctx, input, patch, &summary, dz, at, &mut tangential) {
             Ok((result, tangential)) => {
                 side.strip_of_group[out.n_groups] = Some(index);
                 upward += store_patch(side.sigma, result, patch.weight, tangential, out);
@@ -401,9 +402,10 @@ pub(super) fn evaluate_strips(
     Ok(upward)
 }
 
-/// Normal and tangential result of one strip patch (in output slot `slot`), and its tangential
-/// force in track axes; the tangential problem solved or taken from a record as `tangential`
-/// says ([`Tangential::None`] solves it, unrecorded).
+/// Normal and tangential result of one strip patch (in output slot `slot`, `key` its index
+/// among the side's strip patches, [`PatchTangential::key`]), and its tangential force in track
+/// axes; the tangential problem solved or taken from a record as `tangential` says
+/// ([`Tangential::None`] solves it, unrecorded).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn strip_patch_result(
     side: &mut Side,
@@ -412,7 +414,7 @@ pub(super) fn strip_patch_result(
     patch: &StripPatch,
     summary: &crate::normal::strips::PatchSummary,
     dz: f64,
-    slot: usize,
+    (slot, key): (usize, usize),
     tangential: &mut Tangential,
 ) -> Result<(PatchResult, Vector3<f64>), InputError> {
     let sc = summary.s_centroid;
@@ -437,7 +439,7 @@ pub(super) fn strip_patch_result(
     )?;
     let mu = ctx.material.friction;
     let recorded = match tangential {
-        Tangential::Reuse(memo) => memo.scaled(slot, patch.weight, summary.normal_force, mu),
+        Tangential::Reuse(memo) => memo.scaled(key, summary.normal_force, mu),
         _ => None,
     };
     let t = match recorded {
@@ -450,7 +452,7 @@ pub(super) fn strip_patch_result(
                 input,
                 patch,
                 summary,
-                slot,
+                (slot, key),
                 at_reference,
                 &equivalent,
             )?;
@@ -483,9 +485,9 @@ pub(super) fn strip_patch_result(
     Ok((result, t.tangential))
 }
 
-/// The tangential problem of one strip patch (in slot `slot`; its reference point with the
-/// creepages and speed there, its equivalent ellipse): the strip solver of the
-/// `tangentialModel`, planar or non-planar.
+/// The tangential problem of one strip patch (in slot `slot`, recorded under `key`; its
+/// reference point with the creepages and speed there, its equivalent ellipse): the strip
+/// solver of the `tangentialModel`, planar or non-planar.
 #[allow(clippy::too_many_arguments)]
 fn solve_strip_tangential(
     side: &mut Side,
@@ -493,7 +495,7 @@ fn solve_strip_tangential(
     input: &WheelsetInput,
     patch: &StripPatch,
     summary: &crate::normal::strips::PatchSummary,
-    slot: usize,
+    (slot, key): (usize, usize),
     (reference, creepage, speed): (&ContactPoint, Creepage, f64),
     equivalent: &EquivalentEllipse,
 ) -> Result<PatchTangential, InputError> {
@@ -574,7 +576,7 @@ fn solve_strip_tangential(
     }
     Ok(PatchTangential {
         normal_force: summary.normal_force,
-        weight: patch.weight,
+        key,
         solution: StripFastsimResult { fy: fy_patch, ..t },
         tangential,
     })
