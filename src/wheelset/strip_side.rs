@@ -270,7 +270,9 @@ impl StripSide {
     /// multi-Hertzian lowering that carries the load (or the prescribed one): the strips are
     /// laid out at [`LAYOUT_FACTOR`] times its approach. The load iteration starts at
     /// `ratio_hint` (within [½, 2]) × the multi-Hertzian approach (the previous step's ratio: a
-    /// warm start that changes the balanced lowering only within the iteration's tolerance).
+    /// warm start that changes the balanced lowering only within the iteration's tolerance),
+    /// its first correction Newton's step with the Hertzian slope dF/dδ = 3F/(2δ) there
+    /// (docs/theory.md §8.3).
     /// Returns the lowering.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
@@ -288,8 +290,10 @@ impl StripSide {
         self.lay_out(geometry, touch + LAYOUT_FACTOR * approach, settings, table);
         match target {
             Some(q) => {
+                let trial_approach = approach * ratio_hint.clamp(0.5, 2.0);
                 let trial = Guess {
-                    approach: approach * ratio_hint.clamp(0.5, 2.0),
+                    approach: trial_approach,
+                    slope: (trial_approach > 0.0).then(|| 1.5 * q / trial_approach),
                     ..Guess::default()
                 };
                 self.iterate(q, touch, trial, &settings.params, table)
