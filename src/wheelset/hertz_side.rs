@@ -230,35 +230,25 @@ pub(super) fn add_patch(
         mu: ctx.material.friction,
     };
     side.last_y_rail[out.n_groups] = reference.y_rail;
-    let recorded = match tangential {
-        Tangential::None => {
-            return Ok(store_patch(
-                side.sigma,
-                result,
-                weight,
-                nalgebra::Vector3::zeros(),
-                out,
-            ))
-        }
-        Tangential::Reuse(memo) => memo.scaled(key, result.fn_, ctx.material.friction),
-        Tangential::Solve(_) => None,
-    };
-    let t = match recorded {
-        Some(t) => t,
-        None => {
-            let t = side.fastsim[out.n_groups].solve(&contact, &creepage, speed)?;
-            let solved = PatchTangential {
-                normal_force: result.fn_,
-                key,
-                solution: StripFastsimResult::from(&t),
-                tangential: nalgebra::Vector3::zeros(),
-            };
-            if let Tangential::Solve(memo) = tangential {
-                memo.push(solved);
-            }
-            solved
-        }
-    };
+    if let Tangential::None = tangential {
+        return Ok(store_patch(
+            side.sigma,
+            result,
+            weight,
+            nalgebra::Vector3::zeros(),
+            out,
+        ));
+    }
+    let fastsim = &mut side.fastsim[out.n_groups];
+    let t = tangential.patch(key, result.fn_, ctx.material.friction, || {
+        let t = fastsim.solve(&contact, &creepage, speed)?;
+        Ok::<_, InputError>(PatchTangential {
+            normal_force: result.fn_,
+            key,
+            solution: StripFastsimResult::from(&t),
+            tangential: nalgebra::Vector3::zeros(),
+        })
+    })?;
     result.set_tangential(&t.solution);
     let tangential = planar_tangential(side.sigma, gamma, result.fx, result.fy);
     Ok(store_patch(side.sigma, result, weight, tangential, out))
@@ -361,15 +351,12 @@ pub(super) fn hertz_side(
         root = Some(balanced.root(target));
         // A later pass whose target moved by little keeps the last solved tangential solution,
         // scaled, once per step ([`crate::wheelset::reuse`]).
-        let reused = tangential && k > 0 && ctx.settings.reuse_tangential && memo.take(target, q);
-        let mode = if !tangential {
-            Tangential::None
-        } else if reused {
-            Tangential::Reuse(&memo)
+        let mode = if tangential {
+            memo.pass(k, target, q, ctx.settings.reuse_tangential)
         } else {
-            memo.start(target);
-            Tangential::Solve(&mut memo)
+            Tangential::None
         };
+        let reused = mode.reuses();
         if balanced.evaluated {
             complete_ellipses(side, ctx, input, out, mode)?;
         } else {

@@ -102,7 +102,7 @@ pub struct WheelsetSettings {
     /// (as the half-space theory assumes). `false`: each strip its own angle, rolling radius
     /// and creepages (docs/theory.md §5.8).
     pub planar_patch: bool,
-    /// A prescribed-load creep pass whose normal-force target moved by at most 1e−5 of the
+    /// A prescribed-load creep pass whose normal-force target moved by at most 3e−6 of the
     /// load since the last tangential solve keeps that solution, scaled to its normal forces
     /// (docs/theory.md §8.3). `false`: every pass solves the tangential problem again.
     pub reuse_tangential: bool,

@@ -143,6 +143,20 @@ impl TangentialMemo {
     }
 }
 
+impl TangentialMemo {
+    /// What creep pass `k` of a step, balanced against `target` [N] on a wheel of load `load`
+    /// [N], does about the tangential problem: a later pass (k > 0) reuses the record where
+    /// `reuse` allows and [`TangentialMemo::take`] grants it; otherwise it solves and records.
+    pub fn pass(&mut self, k: usize, target: f64, load: f64, reuse: bool) -> Tangential<'_> {
+        if k > 0 && reuse && self.take(target, load) {
+            Tangential::Reuse(self)
+        } else {
+            self.start(target);
+            Tangential::Solve(self)
+        }
+    }
+}
+
 /// What a wheel's evaluation does about the tangential problem.
 pub(super) enum Tangential<'a> {
     /// Normal forces only.
@@ -151,6 +165,35 @@ pub(super) enum Tangential<'a> {
     Solve(&'a mut TangentialMemo),
     /// Take every patch's from the record, scaled to its new normal force.
     Reuse(&'a TangentialMemo),
+}
+
+impl Tangential<'_> {
+    /// Whether the pass takes its solutions from the record.
+    pub fn reuses(&self) -> bool {
+        matches!(self, Self::Reuse(_))
+    }
+
+    /// Patch `key`'s solution ([`PatchTangential::key`]) taken from the record, scaled to
+    /// `normal_force` at friction coefficient `mu`, or solved by `solve` (and recorded when the
+    /// pass records).
+    pub fn patch<E>(
+        &mut self,
+        key: usize,
+        normal_force: f64,
+        mu: f64,
+        solve: impl FnOnce() -> Result<PatchTangential, E>,
+    ) -> Result<PatchTangential, E> {
+        if let Self::Reuse(memo) = self {
+            if let Some(t) = memo.scaled(key, normal_force, mu) {
+                return Ok(t);
+            }
+        }
+        let t = solve()?;
+        if let Self::Solve(memo) = self {
+            memo.push(t);
+        }
+        Ok(t)
+    }
 }
 
 #[cfg(test)]

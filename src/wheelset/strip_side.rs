@@ -442,30 +442,19 @@ pub(super) fn strip_patch_result(
         ctx.material.friction,
     )?;
     let mu = ctx.material.friction;
-    let recorded = match tangential {
-        Tangential::Reuse(memo) => memo.scaled(key, summary.normal_force, mu),
-        _ => None,
-    };
-    let t = match recorded {
-        Some(t) => t,
-        None => {
-            let at_reference = (&reference, creepage, speed);
-            let t = solve_strip_tangential(
-                side,
-                ctx,
-                input,
-                patch,
-                summary,
-                (slot, key),
-                at_reference,
-                &equivalent,
-            )?;
-            if let Tangential::Solve(memo) = tangential {
-                memo.push(t);
-            }
-            t
-        }
-    };
+    let t = tangential.patch(key, summary.normal_force, mu, || {
+        let at_reference = (&reference, creepage, speed);
+        solve_strip_tangential(
+            side,
+            ctx,
+            input,
+            patch,
+            summary,
+            (slot, key),
+            at_reference,
+            &equivalent,
+        )
+    })?;
     let mut result = PatchResult {
         fn_: summary.normal_force,
         area: summary.area,
@@ -630,13 +619,8 @@ pub(super) fn solve_strips(
         // A later pass whose target moved by little keeps the last solved tangential solution,
         // scaled, once per step ([`crate::wheelset::reuse`]).
         let target = target.unwrap_or(f64::NAN);
-        let reused = k > 0 && ctx.settings.reuse_tangential && memo.take(target, q);
-        let mode = if reused {
-            Tangential::Reuse(&memo)
-        } else {
-            memo.start(target);
-            Tangential::Solve(&mut memo)
-        };
+        let mode = memo.pass(k, target, q, ctx.settings.reuse_tangential);
+        let reused = mode.reuses();
         evaluate_strips(side, ctx, input, dz, out, mode)?;
         Ok::<_, WheelsetError>((creep_upward(out), reused))
     };
