@@ -606,7 +606,7 @@ fn project_near<T: Copy>(
             return found;
         }
     }
-    project_from(plane, s, plane.w0 + s * plane.cos_gamma, &curve)
+    project_on_plane(plane, s, &curve)
 }
 
 /// The Newton iteration of [`project_on_plane`] from `w`.
