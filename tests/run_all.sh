@@ -2,7 +2,7 @@
 # Runs every test of railcontact (the README's test command; CI runs it through .ci/run):
 #   1. formatting and clippy with warnings as errors;
 #   2. Rust unit and integration tests, then the continuity sweeps and random-walk soaks at full
-#      resolution in a release build;
+#      resolution and the exact half-space comparisons in a release build;
 #   3. packs the FMUs (release build; the Linux library against glibc 2.17 through cargo-zigbuild,
 #      required here rather than used when found) and runs their default experiments through
 #      the C API;
@@ -21,6 +21,8 @@ echo "== cargo test"
 cargo test --workspace
 echo "== continuity sweeps and random-walk soaks at full resolution (release)"
 cargo test --release --test continuity --test soak
+echo "== exact half-space comparisons in release (the rolling oracle's Newton systems)"
+cargo test --release -p railcontact-halfspace --test halfspace_oracle
 echo "== fmu-pack (release build against glibc 2.17, pack, default experiments)"
 cargo run --release -p fmu-pack -- --glibc 2.17
 echo "== Python host tests"

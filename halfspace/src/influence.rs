@@ -16,7 +16,7 @@ pub fn influence_coefficient(dx: f64, dy: f64, x: f64, y: f64, e_star: f64) -> f
 
 /// Signed ∫₀^x ∫₀^y dt ds / √(s² + t²) = sgn(x) sgn(y) (|x| asinh(|y|/|x|) + |y| asinh(|x|/|y|)),
 /// zero on the axes.
-fn corner_integral(x: f64, y: f64) -> f64 {
+pub(crate) fn corner_integral(x: f64, y: f64) -> f64 {
     let (ax, ay) = (x.abs(), y.abs());
     if ax == 0.0 || ay == 0.0 {
         return 0.0;

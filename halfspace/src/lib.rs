@@ -1,5 +1,6 @@
-//! Exact frictionless normal contact of two elastic half-spaces: the validation oracle of
-//! railcontact's fast normal models.
+//! Exact contact of two elastic half-spaces: the validation oracle of railcontact's fast normal
+//! models (frictionless normal contact, below) and tangential models (steady rolling with
+//! friction on a given pressure, [`solve_rolling`]).
 //!
 //! Kalker's normal problem ("NORM"; Kalker 1990, *Three-dimensional elastic bodies in rolling
 //! contact*, Kluwer, Dordrecht) for two bodies of the **same material** (quasi-identical, so the
@@ -88,10 +89,12 @@
 mod convolution;
 mod grid;
 mod influence;
+mod rolling;
 mod solver;
 
 pub use grid::Grid;
 pub use influence::influence_coefficient;
+pub use rolling::{solve_rolling, tangential_influence, Rolling, RollingSolution};
 pub use solver::{solve, surface_displacement, Solution, SolveError, Solver, Target};
 
 #[cfg(test)]

@@ -9,6 +9,10 @@
 //! lateral shifts −1…+4 mm (tread) within ±10 % in area and ±15 % in pmax, and at the flange-root
 //! shifts +5 and +6 mm with area error under 18 % and pmax error under 50 %.
 //!
+//! The tangential side likewise: `railcontact_halfspace::solve_rolling` (Kalker's steady rolling
+//! problem on the exact pressure) is checked against CONTACT's creep curves of the central case,
+//! then the coupled strips' creep curves with FaStrip against it at 0 and +2 mm (release builds).
+//!
 //! Set-up as the root crate's `tests/central.rs` (benchmark profiles, E = 210 GPa, ν = 0.28,
 //! 78.5 kN per wheel, no yaw, right wheel). Known limit of the oracle: one contact plane per wheel
 //! (the dominant patch's); at +5 mm, where tread and flange-root contact coexist, it is
@@ -23,8 +27,9 @@ use railcontact::geometry::strips::StripGeometry;
 use railcontact::material::Material;
 use railcontact::normal::hertz::contact_modulus;
 use railcontact::normal::NormalModel;
+use railcontact::tangential::fastsim::Creepage;
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult};
-use railcontact_halfspace::{solve, Grid, Target};
+use railcontact_halfspace::{solve, solve_rolling, Grid, Rolling, Solution, Target};
 
 use common::benchmark_wheelset;
 
@@ -51,22 +56,43 @@ fn model_and_oracle(ws: &mut Wheelset, y: f64) -> ((f64, f64), (f64, f64)) {
 
 /// [`model_and_oracle`] at yaw angle `yaw` [rad].
 fn model_and_oracle_yawed(ws: &mut Wheelset, y: f64, yaw: f64) -> ((f64, f64), (f64, f64)) {
+    let o = exact_normal(ws, y, yaw, Creepage::default(), ELEMENT);
+    let patches: Vec<_> = o.out.right.shown_patches().copied().collect();
+    let area = patches.iter().map(|p| p.area).sum();
+    let pmax = patches.iter().map(|p| p.pmax).fold(0.0, f64::max);
+    ((area, pmax), (o.exact.contact_area, o.exact.max_pressure))
+}
+
+/// The model's solution of a pose with prescribed creepages and the exact normal solution on
+/// the dominant patch's plane at the wheel's total normal force.
+struct ExactNormal {
+    out: WheelsetResult,
+    grid: Grid,
+    exact: Solution,
+    /// Lateral coordinate on the plane of the patch's reference point (the strips' pressure
+    /// centroid, where the creepages hold) [m].
+    s_reference: f64,
+}
+
+/// [`ExactNormal`] of the right wheel at lateral shift `y` [m] and yaw `yaw` [rad], the model
+/// solved with the prescribed `creepage`, the oracle on elements of `element` × `element`.
+fn exact_normal(
+    ws: &mut Wheelset,
+    y: f64,
+    yaw: f64,
+    creepage: Creepage,
+    element: f64,
+) -> ExactNormal {
     let input = WheelsetInput {
         y,
         yaw,
         roll: 0.0,
         vertical: Vertical::Loads { left: Q, right: Q },
-        creepages: Creepages::Prescribed {
-            creepage: Default::default(),
-            vx: 2.0,
-        },
+        creepages: Creepages::Prescribed { creepage, vx: 2.0 },
     };
     let mut out = WheelsetResult::default();
     ws.solve(&input, &mut out).expect("solve");
-    let patches: Vec<_> = out.right.shown_patches().copied().collect();
-    let area = patches.iter().map(|p| p.area).sum();
-    let pmax = patches.iter().map(|p| p.pmax).fold(0.0, f64::max);
-    let normal_force: f64 = patches.iter().map(|p| p.fn_).sum();
+    let normal_force: f64 = out.right.shown_patches().map(|p| p.fn_).sum();
 
     let dominant = ws
         .strip_patches(true)
@@ -80,25 +106,25 @@ fn model_and_oracle_yawed(ws: &mut Wheelset, y: f64, yaw: f64) -> ((f64, f64), (
     // 4 mm beyond the model's patch on each side: the exact patch may be wider.
     let (lo, hi) = (summary.s_min - 4e-3, summary.s_max + 4e-3);
     let ny =
-        (((hi - lo) / ELEMENT).round() as usize).min(railcontact::geometry::strips::MAX_STRIPS);
+        (((hi - lo) / element).round() as usize).min(railcontact::geometry::strips::MAX_STRIPS);
     let mut geom = StripGeometry::default();
     let mut points = StripPoints::default();
     ws.geometry(true).strip_geometry(
         &dominant.plane,
         lo,
-        lo + ny as f64 * ELEMENT,
+        lo + ny as f64 * element,
         ny,
         &mut geom,
         &mut points,
     );
     let half_x = 0.75 * summary.length + 1e-3;
-    let nx = (2.0 * half_x / ELEMENT).ceil() as usize;
+    let nx = (2.0 * half_x / element).ceil() as usize;
     let grid = Grid {
         nx,
         ny,
-        dx: ELEMENT,
-        dy: ELEMENT,
-        x0: -(nx as f64) * ELEMENT / 2.0,
+        dx: element,
+        dy: element,
+        x0: -(nx as f64) * element / 2.0,
         y0: lo,
     };
     let gap: Vec<f64> = (0..ny)
@@ -116,7 +142,12 @@ fn model_and_oracle_yawed(ws: &mut Wheelset, y: f64, yaw: f64) -> ((f64, f64), (
         1e-9,
     )
     .expect("half-space solve");
-    ((area, pmax), (exact.contact_area, exact.max_pressure))
+    ExactNormal {
+        out,
+        grid,
+        exact,
+        s_reference: summary.s_centroid,
+    }
 }
 
 #[test]
@@ -200,4 +231,175 @@ fn coupled_strips_against_the_exact_solution_over_lateral_shifts() {
         (if y_mm <= 4.0 { 0.05 } else { 0.10 }, 0.10)
     });
     assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// Element size of the rolling oracle [m]: 2.5 × the normal reference's, which keeps its dense
+/// Newton system (two unknowns per loaded element, ~700 elements on the central patch) at about
+/// a second per solve; against CONTACT's 0.2 mm solution it stays within 0.9 % of μN
+/// (`exact_rolling_reproduces_contact_creep_curves`).
+const ROLLING_ELEMENT: f64 = 0.5e-3;
+
+/// Friction coefficient of the creep-curve comparisons (the reference's).
+const MU: f64 = 0.3;
+
+/// Exact steady rolling under the exact pressure of `o` with the prescribed `creepage` (about
+/// the model patch's reference point): (Fx, Fy) over μN of the right wheel's patch.
+fn exact_rolling(o: &ExactNormal, creepage: Creepage) -> (f64, f64) {
+    let g = o.grid;
+    let loaded = |i: usize, j: usize| o.exact.pressure[j * g.nx + i] > 0.0;
+    let cols: Vec<usize> = (0..g.nx)
+        .filter(|&i| (0..g.ny).any(|j| loaded(i, j)))
+        .collect();
+    let rows: Vec<usize> = (0..g.ny)
+        .filter(|&j| (0..g.nx).any(|i| loaded(i, j)))
+        .collect();
+    let (i0, i1) = (cols[0], *cols.last().unwrap());
+    let (j0, j1) = (rows[0], *rows.last().unwrap());
+    // The loaded box; y from the patch's reference point.
+    let crop = Grid {
+        nx: i1 - i0 + 1,
+        ny: j1 - j0 + 1,
+        dx: g.dx,
+        dy: g.dy,
+        x0: g.x0 + i0 as f64 * g.dx,
+        y0: g.y0 + j0 as f64 * g.dy - o.s_reference,
+    };
+    let pressure: Vec<f64> = (j0..=j1)
+        .flat_map(|j| (i0..=i1).map(move |i| (i, j)))
+        .map(|(i, j)| o.exact.pressure[j * g.nx + i])
+        .collect();
+    let rolling = Rolling {
+        xi: creepage.xi,
+        eta: creepage.eta,
+        phi: creepage.phi,
+        shear_modulus: E / (2.0 * (1.0 + NU)),
+        poisson_ratio: NU,
+        friction: MU,
+    };
+    let sol = solve_rolling(&crop, &pressure, &rolling, 1e-9).expect("rolling solve");
+    let mu_n = MU * o.exact.normal_force;
+    (sol.fx / mu_n, sol.fy / mu_n)
+}
+
+/// Whether the rolling comparisons run: their dense Newton systems take minutes in a debug
+/// build; `tests/run_all.sh` runs this file in a release build.
+fn rolling_oracle_runs() -> bool {
+    if cfg!(debug_assertions) {
+        eprintln!("the rolling comparisons run in release builds (tests/run_all.sh)");
+        return false;
+    }
+    true
+}
+
+#[test]
+fn exact_rolling_reproduces_contact_creep_curves() {
+    // CONTACT's creep curves of the central case (pure ξ and η, and with the spin of pure
+    // rolling) against the rolling oracle on the oracle's own exact pressure: within 1.5 % of μN
+    // at every point (measured 0.86 %, at ξ = 2e−3: the oracle's 0.5 mm elements against
+    // CONTACT's 0.2 mm; first order in the element size).
+    if !rolling_oracle_runs() {
+        return;
+    }
+    let rows = common::read_csv("reference/central/creep_curves_dy0.csv");
+    let mut ws = wheelset(NormalModel::Analyn);
+    let mut worst: f64 = 0.0;
+    for r in &rows {
+        let creepage = Creepage {
+            xi: r["cksi"],
+            eta: r["ceta"],
+            phi: r["cphi_per_mm"] * 1e3,
+        };
+        if creepage.xi.abs().max(creepage.eta.abs()) < 4e-4 {
+            continue;
+        }
+        let o = exact_normal(&mut ws, 0.0, 0.0, creepage, ROLLING_ELEMENT);
+        let (fx, fy) = exact_rolling(&o, creepage);
+        let (fx_ref, fy_ref) = (r["fx_over_mufn"], r["fs_over_mufn"]);
+        let e = (fx - fx_ref).abs().max((fy - fy_ref).abs());
+        worst = worst.max(e);
+        println!(
+            "ξ {:.4} η {:.4} φ {:.4}: exact Fx {fx:+.4} CONTACT {fx_ref:+.4} | Fy {fy:+.4} \
+             CONTACT {fy_ref:+.4} | {e:.4}",
+            creepage.xi, creepage.eta, creepage.phi
+        );
+    }
+    println!("worst {worst:.4}");
+    assert!(worst < 0.015, "worst {worst}");
+}
+
+/// The coupled strips with FaStrip on the planar patch (their best tangential option on the
+/// central case) against the rolling oracle at lateral shifts 0 and +2 mm: pure ξ and η from
+/// 5e−4 to 1e−2, without spin and with the spin of pure rolling, sin γ / r at the patch.
+/// Prints the curves and returns the (worst, mean) difference per shift in units of μN (mean
+/// over both force components of every point, as `tests/tangential.rs` does).
+fn coupled_creep_curves_against_the_oracle() -> Vec<(f64, f64, f64)> {
+    let material = Material {
+        youngs_modulus: E,
+        poisson_ratio: NU,
+        friction: MU,
+    };
+    let mut ws = common::benchmark_wheelset_with(material, |s| {
+        s.normal_model = NormalModel::CoupledStrips;
+        s.tangential = railcontact::tangential::patch::TangentialModel::Fastrip;
+        s.planar_patch = true;
+    });
+    let steps = [5e-4, 1e-3, 2e-3, 5e-3, 1e-2];
+    let mut summary = Vec::new();
+    for y in [0.0, 2e-3] {
+        let rest = exact_normal(&mut ws, y, 0.0, Creepage::default(), ROLLING_ELEMENT);
+        let patch = rest.out.right.patches[0];
+        let spin = patch.contact_angle.sin() / patch.rolling_radius;
+        let (mut worst, mut sum, mut count): (f64, f64, usize) = (0.0, 0.0, 0);
+        for phi in [0.0, spin] {
+            let curves = steps
+                .iter()
+                .map(|&c| (c, 0.0))
+                .chain(steps.iter().map(|&c| (0.0, c)));
+            for (xi, eta) in curves {
+                let creepage = Creepage { xi, eta, phi };
+                let o = exact_normal(&mut ws, y, 0.0, creepage, ROLLING_ELEMENT);
+                let (fx, fy) = exact_rolling(&o, creepage);
+                let p = o.out.right.patches[0];
+                let (mx, my) = (p.fx / (MU * p.fn_), p.fy / (MU * p.fn_));
+                let (ex, ey) = ((mx - fx).abs(), (my - fy).abs());
+                worst = worst.max(ex.max(ey));
+                sum += ex + ey;
+                count += 2;
+                println!(
+                    "y {:+.0} mm ξ {xi:.4} η {eta:.4} φ {phi:.4}: exact {fx:+.4} {fy:+.4} | \
+                     coupled + FaStrip {mx:+.4} {my:+.4} | {:.4}",
+                    y * 1e3,
+                    ex.max(ey)
+                );
+            }
+        }
+        let mean = sum / count as f64;
+        println!("y {:+.0} mm: worst {worst:.4}, mean {mean:.4}", y * 1e3);
+        summary.push((y, worst, mean));
+    }
+    summary
+}
+
+#[test]
+fn coupled_strips_creep_curves_against_the_exact_solution() {
+    // Measured (docs/validation.md): at 0 mm worst 4.0 %, mean 1.0 % of μN; at +2 mm worst
+    // 7.6 %, mean 1.6 % — FaStrip's strip theory on the +2 mm patch falls short of the exact
+    // forces by 5–8 % of μN where adhesion and slip share the patch (ANALYN + FaStrip likewise,
+    // 6–9 %). Bounds: the measured figures with 0.5 % of μN for the oracle's own error, so that
+    // a change that makes them worse fails here.
+    if !rolling_oracle_runs() {
+        return;
+    }
+    let summary = coupled_creep_curves_against_the_oracle();
+    for (y, worst, mean) in summary {
+        let (worst_bound, mean_bound) = if y == 0.0 {
+            (0.045, 0.015)
+        } else {
+            (0.081, 0.021)
+        };
+        assert!(
+            worst < worst_bound && mean < mean_bound,
+            "y {y}: worst {worst}, mean {mean}"
+        );
+    }
 }
