@@ -90,23 +90,6 @@ impl Analyn {
     pub fn one_plus_beta(&self) -> &[f64] {
         &self.one_plus_beta[..self.n]
     }
-
-    /// A1 on strip `i` of the last `prepare` at approach `delta` [m]: the half-length x_l,i [m]
-    /// and the peak pressure over the contact modulus, p_max,i/E* = √δ_loc,i √(A_i + B_i) P_i
-    /// [-], or `None` where the strip is out of contact (δ_loc ≤ 0, unusable A_i or f_i, NaN δ,
-    /// or i beyond the prepared strips).
-    fn strip_at(&self, i: usize, delta: f64) -> Option<(f64, f64)> {
-        if i >= self.n || !self.active[i] {
-            return None;
-        }
-        let delta_loc = local_approach(delta, self.one_plus_beta[i], self.gap[i]);
-        (delta_loc > 0.0).then(|| {
-            (
-                strip_half_length(delta_loc, self.one_plus_alpha[i], self.curv_a[i]),
-                delta_loc.sqrt() * self.peak_coeff[i],
-            )
-        })
-    }
 }
 
 impl StripModel for Analyn {
@@ -151,9 +134,16 @@ impl StripModel for Analyn {
         let Some(n) = out.begin(geom, delta, params.e_star) else {
             return 0.0;
         };
-        for i in 0..n {
-            if let Some((half_length, peak)) = self.strip_at(i, delta) {
-                out.set(i, half_length, params.e_star * peak, geom.ds);
+        for i in 0..n.min(self.n) {
+            if !self.active[i] {
+                continue;
+            }
+            let delta_loc = local_approach(delta, self.one_plus_beta[i], self.gap[i]);
+            if delta_loc > 0.0 {
+                let half_length =
+                    strip_half_length(delta_loc, self.one_plus_alpha[i], self.curv_a[i]);
+                let pmax = params.e_star * (delta_loc.sqrt() * self.peak_coeff[i]);
+                out.set(i, half_length, pmax, geom.ds);
             }
         }
         out.normal_force()

@@ -64,7 +64,7 @@
 //!   displacement: the strip lengths are as good as that ratio (against the exact half-space on
 //!   S1002/UIC60, −1…+6 mm: area −2.5…+2.2 %; Manchester A-2.2's flange states: −6…−8 %).
 //! * A changing pose costs 2–5 solves of C2–C3 per normal solve (a steady pose one): on the
-//!   hunting wheelset 5.1 M instructions per wheelset solve, 11.7 × ANALYN's (1.66 × steady).
+//!   hunting wheelset 4.4 M instructions per wheelset solve, 10.0 × ANALYN's (1.66 × steady).
 //! * The fixed point of C1–C4 is not proven unique: on a two-region gap (`two_wells(120)` of
 //!   the tests) two iteration schemes settled at normal forces 0.4 % apart; warm and cold starts
 //!   agree on the tested sequences (1e−9).
@@ -128,10 +128,10 @@ pub struct CoupledStrips {
     log_edge: PerStrip<f64>,
     /// (k + ½)Δs per strip offset k [m].
     edge: PerStrip<f64>,
-    /// ln((k + ½)/(k − ½)) per offset k ≥ 1.
+    /// ln((k + ½)/(k − ½)) per offset k ≥ 1 (fixed: filled by `new`).
     log_ratio: PerStrip<f64>,
     /// Scratch of a solve, per candidate (strip with a_i > 0): its strip index, a_i, δ − f_i,
-    /// load y_i and its bound, residual u_i − (δ − f_i), state; Ĵ at a column's strip edges.
+    /// load y_i, residual u_i − (δ − f_i), state; Ĵ at a column's strip edges.
     strip: PerStrip<usize>,
     half: PerStrip<f64>,
     /// Per candidate, the residual of C4, ln √(π y/ratio) − ln a.
@@ -183,7 +183,13 @@ impl CoupledStrips {
             m: 0,
             log_edge: PerStrip::default(),
             edge: PerStrip::default(),
-            log_ratio: PerStrip::default(),
+            log_ratio: PerStrip(std::array::from_fn(|k| {
+                if k == 0 {
+                    0.0
+                } else {
+                    ((k as f64 + 0.5) / (k as f64 - 0.5)).ln()
+                }
+            })),
             strip: PerStrip::default(),
             half: PerStrip::default(),
             residual_log: PerStrip::default(),
@@ -320,13 +326,15 @@ impl CoupledStrips {
             let log_a = a.ln();
             let j = self.strip[c];
             let far = (self.strip[0].abs_diff(j)).max(self.strip[m - 1].abs_diff(j));
+            // Beyond this edge the far-field series replaces the table.
+            let far_field = self.kernel.t_max() * a;
             for k in 0..=far {
                 let t = self.edge[k] / a;
                 self.edge_integral[k] = self.kernel.at_log(t, self.log_edge[k] - log_a);
             }
             self.column[0] = 2.0 * self.edge_integral[0];
             for k in 1..=far {
-                self.column[k] = if self.edge[k - 1] >= self.kernel.t_max() * a {
+                self.column[k] = if self.edge[k - 1] >= far_field {
                     let (t_lo, t_hi) = (self.edge[k - 1] / a, self.edge[k] / a);
                     ScaledStripIntegral::far_difference(t_lo, t_hi, self.log_ratio[k])
                 } else {
@@ -339,8 +347,8 @@ impl CoupledStrips {
         }
     }
 
-    /// Loads of the free strips (block solve, with the bounded ones at their bound and the
-    /// unloaded ones at zero) and the residuals; `false` if the block is singular.
+    /// Loads of the free strips (block solve, the unloaded ones at zero) and the residuals;
+    /// `false` if the block is singular.
     fn solve_free(&mut self, m: usize) -> bool {
         let mut size = 0;
         for r in 0..m {
@@ -355,8 +363,7 @@ impl CoupledStrips {
             for (q, &c) in self.block_index[..size].iter().enumerate() {
                 self.block[p * MAX_STRIPS + q] = row[c];
             }
-            let fixed: f64 = row.iter().zip(&self.load[..m]).map(|(g, y)| g * y).sum();
-            self.block_rhs[p] = self.rhs[r] - fixed;
+            self.block_rhs[p] = self.rhs[r];
         }
         if !lu_solve(&mut self.block, size, &mut self.block_rhs[..size]) {
             return false;
@@ -377,8 +384,8 @@ impl CoupledStrips {
         }
     }
 
-    /// Whether candidate `r` violates C3: a free load outside [0, y_max], an unloaded strip the
-    /// others push through the surface, a bounded strip whose surface would lift off.
+    /// Whether candidate `r` violates C3: a free strip with a negative load, or an unloaded
+    /// strip the others push through the surface.
     fn infeasible(&self, r: usize, tol: f64) -> bool {
         match self.state[r] {
             Load::Free => self.load[r] < 0.0,
@@ -430,7 +437,7 @@ impl CoupledStrips {
         false
     }
 
-    /// C3 by projected Gauss–Seidel (onto [0, y_max]) from the current loads; `true` once a
+    /// C3 by projected Gauss–Seidel (onto y ≥ 0) from the current loads; `true` once a
     /// sweep changes no load by more than 1e−12 of the largest.
     fn gauss_seidel(&mut self, m: usize) -> bool {
         for r in 0..m {
@@ -551,11 +558,6 @@ impl StripModel for CoupledStrips {
             let edge = (k as f64 + 0.5) * ds;
             self.edge[k] = edge;
             self.log_edge[k] = edge.ln();
-            self.log_ratio[k] = if k == 0 {
-                0.0
-            } else {
-                ((k as f64 + 0.5) / (k as f64 - 0.5)).ln()
-            };
         }
     }
 

@@ -28,7 +28,7 @@
 //!   half-spaces, (1 − ν1²)/(πE1) + (1 − ν2²)/(πE2) = 1/(πE*). Verified: with ε = 0.5 a circle
 //!   gives Hertz's N, a and p0 (tested, below).
 //! * **KP6** I(y) = ∫_{−c}^{c} √(c² − x²)/√(x² + y²) dx = 2√(c² + y²) [K(k) − E(k)],
-//!   k² = c²/(c² + y²), c = x_l,i ([`inner_integral`]; K − E from the AGM, `crate::numeric::elliptic`).
+//!   k² = c²/(c² + y²), c = x_l,i ([`inner_integral`](crate::normal::kernel::inner_integral); K − E from the AGM, `crate::numeric::elliptic`).
 //! * **KP7** explicit in δ; a prescribed load needs V2 (the caller's).
 //! * **KP8** (optional, `NormalParams::kp_shape_correction`) area-preserving shape correction
 //!   x → s x, (y − y_c) → (y − y_c)/s, s = √(ρ_H/ρ_v); choices below.
@@ -38,7 +38,7 @@
 //! I is log-singular at y = 0: I = 2c(ln(4c/|y|) − 1) + O(y² ln|y|), and decays as πc²/(2|y|).
 //! Product integration with the model kernel S(y) = 2c asinh(α/|y|), α = 2c/e, which has the
 //! same log singularity (asinh z = ln 2z + O(z⁻²)) and decays as (4/e)c²/|y| (6 % below I's
-//! πc²/(2|y|)), and whose antiderivative is closed-form ([`model_kernel_antiderivative`]):
+//! πc²/(2|y|)), and whose antiderivative is closed-form ([`model_kernel_antiderivative`](crate::normal::kernel::model_kernel_antiderivative)):
 //! Φ(Y) = 2c sgn(Y) [|Y| asinh(α/|Y|) + α asinh(|Y|/α)]. The remainder R = I − S is bounded,
 //! vanishes at y = 0 and is smooth apart from a y² ln|y| term.
 //!
@@ -50,7 +50,7 @@
 //!   96, 192 strips); with the defect term the error is O(Δs²): +1.1e−3, 2.9e−4, 7.1e−5, 1.8e−5.
 //! * **The strip containing y0** (s_j − Δs/2 ≤ 0 < s_j + Δs/2; in general not centred on y0) is
 //!   split at y0 and each side integrated as J(Y) = ∫_0^Y I dy = Φ(Y) + ∫_0^Y R dy
-//!   ([`kernel_integral_from_origin`]): the log-singular part analytically, the regular remainder by
+//!   ([`kernel_integral_from_origin`](crate::normal::kernel::kernel_integral_from_origin)): the log-singular part analytically, the regular remainder by
 //!   8-point Gauss–Legendre on [0, min(Y, c)] in t = √y (which smooths the y² ln y term), by
 //!   Gauss–Legendre in ln y on [c, min(Y, 32c)], and beyond 32c by its two-term expansion
 //!   R ≈ (π/2 − 4/e)c²/y + (8/(3e³) − π/16)c⁴/y³ in closed form. Relative error ≤ 2.4e−9 against
