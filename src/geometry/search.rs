@@ -620,7 +620,7 @@ fn project_from<T: Copy>(
     let (z, slope, extra) = curve(w);
     let mut point = CurvePoint { w, z, extra };
     let mut slope = slope;
-    let mut residual = (w - plane.w0) * cos_g - (z - plane.z0) * sin_g - s;
+    let mut residual = in_plane_coordinate(plane, w, z) - s;
     for _ in 0..PROJECTION_STEPS {
         let dt = cos_g - slope * sin_g;
         if residual.abs() < PROJECTION_STOP || dt <= 0.0 || !dt.is_finite() {
@@ -631,14 +631,14 @@ fn project_from<T: Copy>(
             // The last step along the tangent, without evaluating the curve again.
             point.w += step;
             point.z += slope * step;
-            residual = (point.w - plane.w0) * cos_g - (point.z - plane.z0) * sin_g - s;
+            residual = in_plane_coordinate(plane, point.w, point.z) - s;
             break;
         }
         w += step;
         let (z, dz, extra) = curve(w);
         point = CurvePoint { w, z, extra };
         slope = dz;
-        residual = (w - plane.w0) * cos_g - (z - plane.z0) * sin_g - s;
+        residual = in_plane_coordinate(plane, w, z) - s;
     }
     (point, residual.abs() <= PROJECTION_TOLERANCE)
 }
@@ -679,6 +679,12 @@ impl ProjectionTrail {
 /// origin [m].
 fn normal_coordinate(plane: &ContactPlane, w: f64, z: f64) -> f64 {
     (w - plane.w0) * plane.sin_gamma + (z - plane.z0) * plane.cos_gamma
+}
+
+/// In-plane coordinate t = (w − w0) cos γ − (z − z0) sin γ of the wheelset-frame point (w, z)
+/// from the plane's origin [m].
+fn in_plane_coordinate(plane: &ContactPlane, w: f64, z: f64) -> f64 {
+    (w - plane.w0) * plane.cos_gamma - (z - plane.z0) * plane.sin_gamma
 }
 
 /// Gap and points at one in-plane coordinate (see [`WheelOnRail::strip_geometry`]).
@@ -1102,8 +1108,9 @@ impl WheelOnRail {
     /// axle plane), kept inside the lead bound's bracket, on the wheel spline's piece at hand (a
     /// new interval lookup only where l leaves it): the correction is r z' tan ψ sin ψ ≲ 1 µm
     /// at running yaw, so Newton's second step moves l by ~1e−15 m. One interval lookup and
-    /// three cubic evaluations per lateral, where Newton in X took three full spline
-    /// evaluations. The point is the same maximum (to rounding).
+    /// two cubic evaluations per lateral at running yaw (more where the safeguarded iteration
+    /// below runs), where Newton in X took three full spline evaluations. The point is the same
+    /// maximum (to rounding).
     ///
     /// At running yaw one Newton step suffices: from l0 = w / cos ψ the step is
     /// s = (r z' sin²ψ / cos ψ − (l0 cos ψ − w)) / w'(l0), and the next one would be about
@@ -1672,8 +1679,7 @@ impl WheelOnRail {
 
     /// In-plane coordinate s of the rail point at wheelset-frame lateral `w` [m].
     pub fn plane_coordinate_of(&self, plane: &ContactPlane, w: f64) -> f64 {
-        let z = self.rail_at(w, &self.pose).z;
-        (w - plane.w0) * plane.cos_gamma - (z - plane.z0) * plane.sin_gamma
+        in_plane_coordinate(plane, w, self.rail_at(w, &self.pose).z)
     }
 
     /// Rail and wheel points at in-plane coordinate `s` and their normal gap, their projections

@@ -92,8 +92,8 @@
 //! # Evaluation (what each element costs)
 //!
 //! The equations above, arranged so that an element costs one square root and one division for
-//! FS3 in the adhesion zone, one of each where the FASTSIM pass slips, and one root for the slip
-//! displacement in the slip zone (docs/performance.md has the instruction counts):
+//! FS3 in the adhesion zone, a root and two divisions where the FASTSIM pass slips, and one root
+//! for the slip displacement in the slip zone (docs/performance.md has the instruction counts):
 //!
 //! * **Per patch and strip.** FS1's factors −2(1−ν)G C11/(π²μp0), … are formed once per patch
 //!   ([`FastripScales::with_creepage`] multiplies them by each strip's creepages); FS2, κ, λ
@@ -106,7 +106,7 @@
 //! * **FS3's bound check** (choice 2) only where |φ*| > 1: for |φ*| ≤ 1 FS3 provably stays
 //!   within μp, and the check compares squares (no root).
 //! * **The FASTSIM pass** advances every element (its state carries along the strip) with the
-//!   squared trial against the squared bound: a root and a division only where it slips. Its
+//!   squared trial against the squared bound: a root and two divisions only where it slips. Its
 //!   direction is needed only in FaStrip's slip zone: where the pass itself slipped, its
 //!   traction B·p already has |B·p| = μp (up to rounding) and is the slip-zone traction; where
 //!   it adheres, p/|p| takes one root and one reciprocal. Its slip displacement (choice 6) is
@@ -659,13 +659,11 @@ impl AdhesionZone {
         i
     }
 
-    /// FS3's traction (q_x, q_y) [Pa] at the element centre ζ (`root` = √(1 − ζ²)) if the
-    /// element lies in the adhesion zone and the traction within μ_s p (choice 2).
+    /// FS3's traction (q_x, q_y) [Pa] at the centre ζ > −1 + 2δ of an element of the adhesion
+    /// zone (`root` = √(1 − ζ²)) if it stays within μ_s p (choice 2).
     #[inline]
     fn traction(&self, zeta: f64, root: f64) -> Option<(f64, f64)> {
-        if zeta <= self.start {
-            return None;
-        }
+        debug_assert!(zeta > self.start, "an element of the adhesion zone");
         let one_minus = 1.0 - zeta;
         let s1 = root;
         let s2 = (one_minus * (1.0 + zeta - self.two_delta)).max(0.0).sqrt();
@@ -878,18 +876,19 @@ fn solve_elements(
     let rho = problem.scales.traction_curvature * (x_l / mu_pmax);
     let theory = strip_theory(problem.scales, rho, y, x_c, x_l, phi);
     let adhesion_zone = AdhesionZone::of(theory, mu_pmax);
+    let (mut pass, rigid) = match direction_pass(problem, dx) {
+        Some(pass) => (pass, false),
+        None => (DirectionPass::IDLE, true),
+    };
     let slip_zone = SlipZone {
         bound_peak: mu * pressure.peak,
+        rigid,
         rigid_slip_x: xi - phi * y,
         eta,
         phi,
         x_c,
         spin_offset,
         dx,
-    };
-    let (mut pass, rigid) = match direction_pass(problem, dx) {
-        Some(pass) => (pass, false),
-        None => (DirectionPass::IDLE, true),
     };
     // The bound's shape is the strip's own √(1 − ζ²) unless its pressure has another length.
     let own_shape = pressure.half_length == x_l;
@@ -905,36 +904,30 @@ fn solve_elements(
     let first_adhesion = adhesion_zone
         .as_ref()
         .map_or(n, |z| z.first_element(n, |i| element(i).0));
-    let first_adhesion = first_adhesion.min(n);
     let (qx, qy, slipping) = (&mut qx[..n], &mut qy[..n], &mut slipping[..n]);
     let mut acc = StripAccumulator::default();
-    for i in (first_adhesion..n).rev() {
-        let (zeta, root) = element(i);
-        let shape = shape_at(zeta, root);
-        let xr = x_l * zeta;
-        let pass_slip = pass.advance(xr, shape);
-        // Inside the zone FS3 only fails its bound check (choice 2).
-        let fs3 = adhesion_zone.as_ref().and_then(|z| z.traction(zeta, root));
-        let (tx, ty) = match fs3 {
-            Some(q) => q,
-            None => {
-                let (q, power) = slip_zone.traction(&pass, pass_slip, rigid, xr, shape);
-                acc.add_power(power);
-                q
-            }
-        };
-        acc.add(zeta, tx, ty, fs3.is_some());
-        qx[i] = tx;
-        qy[i] = ty;
-        slipping[i] = fs3.is_none();
+    if let Some(zone) = &adhesion_zone {
+        for i in (first_adhesion..n).rev() {
+            let (zeta, root) = element(i);
+            let shape = shape_at(zeta, root);
+            let xr = x_l * zeta;
+            let pass_slip = pass.advance(xr, shape);
+            // Inside the zone FS3 only fails its bound check (choice 2).
+            let fs3 = zone.traction(zeta, root);
+            let (tx, ty) =
+                fs3.unwrap_or_else(|| slip_zone.traction(&pass, pass_slip, xr, shape, &mut acc));
+            acc.add(zeta, tx, ty, fs3.is_some());
+            qx[i] = tx;
+            qy[i] = ty;
+            slipping[i] = fs3.is_none();
+        }
     }
     for i in (0..first_adhesion).rev() {
         let (zeta, root) = element(i);
         let shape = shape_at(zeta, root);
         let xr = x_l * zeta;
         let pass_slip = pass.advance(xr, shape);
-        let ((tx, ty), power) = slip_zone.traction(&pass, pass_slip, rigid, xr, shape);
-        acc.add_power(power);
+        let (tx, ty) = slip_zone.traction(&pass, pass_slip, xr, shape, &mut acc);
         acc.add(zeta, tx, ty, false);
         qx[i] = tx;
         qy[i] = ty;
@@ -993,6 +986,8 @@ impl StripAccumulator {
 struct SlipZone {
     /// B = μ × the bound's peak pressure [Pa].
     bound_peak: f64,
+    /// Whether the FASTSIM pass is unusable (the traction then opposes the rigid slip).
+    rigid: bool,
     /// Rigid slip along x, ξ − φy [-], and the creepages of the lateral one, η + φ(x + Δx/6).
     rigid_slip_x: f64,
     eta: f64,
@@ -1004,33 +999,36 @@ struct SlipZone {
 
 impl SlipZone {
     /// Traction (q_x, q_y) [Pa] of a slipping element at x − x_c = `xr` with bound shape
-    /// `shape`, after `pass` advanced over it (`pass_slip`: its adhesion trial if it slipped),
-    /// and its frictional power density |q| |S| [N/m].
+    /// `shape`, after `pass` advanced over it (`pass_slip`: its adhesion trial if it slipped);
+    /// its frictional power density |q| |S| [N/m] goes to `acc`.
     #[inline(always)]
     fn traction(
         &self,
         pass: &DirectionPass,
         pass_slip: Option<(f64, f64)>,
-        rigid: bool,
         xr: f64,
         shape: f64,
-    ) -> ((f64, f64), f64) {
+        acc: &mut StripAccumulator,
+    ) -> (f64, f64) {
         let mu_p = self.bound_peak * shape;
-        if rigid {
-            return self.against_rigid_slip(xr, mu_p);
-        }
-        match pass_slip {
-            // The pass slipped onto the bound: its traction B·p has |B·p| = μp.
-            Some(trial) => (
-                (self.bound_peak * pass.px, self.bound_peak * pass.py),
-                mu_p * pass.slip(trial),
-            ),
-            // Where the pass adheres its slip is zero.
-            None => {
-                let (ux, uy) = pass.direction();
-                ((mu_p * ux, mu_p * uy), 0.0)
+        let (q, power) = if self.rigid {
+            self.against_rigid_slip(xr, mu_p)
+        } else {
+            match pass_slip {
+                // The pass slipped onto the bound: its traction B·p has |B·p| = μp.
+                Some(trial) => (
+                    (self.bound_peak * pass.px, self.bound_peak * pass.py),
+                    mu_p * pass.slip(trial),
+                ),
+                // Where the pass adheres its slip is zero.
+                None => {
+                    let (ux, uy) = pass.direction();
+                    ((mu_p * ux, mu_p * uy), 0.0)
+                }
             }
-        }
+        };
+        acc.add_power(power);
+        q
     }
 
     /// Large-creepage limit with equal flexibilities, where the pass is unusable: μp (`mu_p`)
