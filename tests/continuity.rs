@@ -3,9 +3,8 @@
 //! through tread, flange-root and flange contact for every normal model, each step whose forces
 //! change by more than 0.5 % of the wheel load bisected down to 1e−12 m (a steep but continuous
 //! change shrinks with the interval; a jump does not). Also checked on every pose: no error, the
-//! load balanced to 1e−6, and an output slot keeps
-//! its patch (its reference point moves by less than the slot-matching distance from step to
-//! step).
+//! load balanced to 1e−6, and an output slot keeps its patch (its reference point moves by less
+//! than the slot-matching distance from step to step).
 //!
 //! In release builds (`cargo test --release --test continuity`, run by `tests/run_all.sh`) the
 //! sweeps step 0.01 mm (the acceptance's resolution); debug builds step 0.1 mm.
@@ -52,7 +51,6 @@ const BALANCE_TOLERANCE: f64 = 1e-6;
 struct Sweep {
     ws: Wheelset,
     load: f64,
-    balance: f64,
     out: WheelsetResult,
     /// Worst change that survived bisection, and where.
     worst: (f64, f64),
@@ -64,7 +62,6 @@ impl Sweep {
         Self {
             ws: builtin_wheelset_with(|s| s.normal_model = model),
             load,
-            balance: BALANCE_TOLERANCE,
             out: WheelsetResult::default(),
             worst: (0.0, 0.0),
             solves: 0,
@@ -97,7 +94,7 @@ impl Sweep {
         let f = forces(&self.out);
         for fz in [f[2], f[5]] {
             assert!(
-                (fz + self.load).abs() <= self.balance * self.load,
+                (fz + self.load).abs() <= BALANCE_TOLERANCE * self.load,
                 "{p:?}: Fz {fz} for {}",
                 self.load
             );

@@ -8,7 +8,7 @@ use common::benchmark_wheelset;
 use railcontact::material::Material;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::Creepage;
-use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
+use railcontact::wheelset::{Creepages, PatchResult, Vertical, WheelsetInput, WheelsetResult};
 
 #[test]
 fn a_warm_started_solve_gives_the_cold_solution() {
@@ -53,12 +53,10 @@ fn a_warm_started_solve_gives_the_cold_solution() {
             assert_eq!(c.right.n_patches, w.right.n_patches, "{model:?} y {y}");
             // The output slots may differ (a patch keeps the slot it had in the previous step):
             // compare the patches themselves.
-            let sorted = |r: &WheelsetResult| {
-                let mut v: Vec<_> = r.right.all_patches().to_vec();
-                v.sort_by(|a, b| a.y_rail.total_cmp(&b.y_rail));
-                v
-            };
-            for (a, b) in sorted(&c).iter().zip(&sorted(&w)) {
+            for (a, b) in patches_by_rail(&c.right)
+                .iter()
+                .zip(&patches_by_rail(&w.right))
+            {
                 for (u, v) in [(a.fn_, b.fn_), (a.fx, b.fx), (a.fy, b.fy)] {
                     assert!((u - v).abs() < tol, "{model:?} y {y}: {u} vs {v}");
                 }
@@ -66,6 +64,14 @@ fn a_warm_started_solve_gives_the_cold_solution() {
             }
         }
     }
+}
+
+/// A wheel's patches ordered by their position on the rail (output slots may differ between two
+/// solutions of the same pose: a patch keeps the slot it had in the previous step).
+fn patches_by_rail(side: &railcontact::wheelset::SideResult) -> Vec<PatchResult> {
+    let mut v: Vec<_> = side.all_patches().to_vec();
+    v.sort_by(|x, y| x.y_rail.total_cmp(&y.y_rail));
+    v
 }
 
 /// Largest difference, over both wheels, between two solutions' wheel forces and moments
@@ -78,12 +84,7 @@ fn largest_difference(a: &WheelsetResult, b: &WheelsetResult, q: f64) -> f64 {
             worst = worst.max((sa.force[k] - sb.force[k]).abs());
             worst = worst.max((sa.moment[k] - sb.moment[k]).abs() / 0.46);
         }
-        let sorted = |s: &railcontact::wheelset::SideResult| {
-            let mut v: Vec<_> = s.all_patches().to_vec();
-            v.sort_by(|x, y| x.y_rail.total_cmp(&y.y_rail));
-            v
-        };
-        let (pa, pb) = (sorted(sa), sorted(sb));
+        let (pa, pb) = (patches_by_rail(sa), patches_by_rail(sb));
         if pa.len() != pb.len() {
             return f64::INFINITY;
         }
