@@ -14,6 +14,7 @@
 use std::f64::consts::{E, FRAC_PI_2, PI};
 
 use crate::numeric::elliptic::complete_elliptic_from_complementary;
+use crate::numeric::interp::cubic_on_uniform_nodes;
 
 /// Scale of the model kernel S(y) = 2c asinh(α/|y|): α = (2/e) c makes S's log singularity
 /// 2c(ln(4c/|y|) − 1) equal to I's (KP6 small-y asymptote, docs/theory.md §5.4).
@@ -247,12 +248,7 @@ impl RemainderTable {
 
     /// Cubic (Lagrange) interpolation of `values` at t ∈ [TABLE_T_MIN, TABLE_T_MAX].
     fn at(values: &[f64], t: f64) -> f64 {
-        let x = (t / TABLE_T_MIN).ln() / TABLE_DU;
-        // `as usize` floors a non-negative value (and saturates below 0) without a call to
-        // libm's floor, which baseline x86-64 (no SSE4.1 rounding) would need.
-        let k = (x as usize).clamp(1, values.len() - 3);
-        let w = crate::numeric::interp::cubic_lagrange_weights(x - k as f64);
-        w[0] * values[k - 1] + w[1] * values[k] + w[2] * values[k + 1] + w[3] * values[k + 2]
+        cubic_on_uniform_nodes(values, (t / TABLE_T_MIN).ln() / TABLE_DU)
     }
 
     /// R(c, y) = c R̂(|y|/c) [m] (as [`kernel_remainder`]).
@@ -365,13 +361,7 @@ impl ScaledStripIntegral {
         } else if x >= (self.values.len() - 1) as f64 {
             self.far_constant + FRAC_PI_2 * log_t + far_field_polynomial(t)
         } else {
-            // `as usize` floors a non-negative value without a call to libm's floor.
-            let k = (x as usize).clamp(1, self.values.len() - 3);
-            let w = crate::numeric::interp::cubic_lagrange_weights(x - k as f64);
-            w[0] * self.values[k - 1]
-                + w[1] * self.values[k]
-                + w[2] * self.values[k + 1]
-                + w[3] * self.values[k + 2]
+            cubic_on_uniform_nodes(&self.values, x)
         }
     }
 
