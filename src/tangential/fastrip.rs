@@ -72,7 +72,16 @@
 //!    the strip is (η + φx_c) + φ(x − x_c)); this keeps the results invariant under a shift of
 //!    the creepage reference point (test `shifted_strips_are_translation_invariant`).
 //! 5. **Discretisation.** Tractions are evaluated at element centres (like CONTACT), nx equal
-//!    elements per strip. The Hertzian driver [`solve_ellipse`] places ny strips at the element
+//!    elements per strip, with one exception: the adhesion zone's trailing element (the first
+//!    whose centre lies in the zone) carries the rest of FS3's exact integral over the zone
+//!    (closed form in arc sines, `AdhesionZone::trailing_terms`) after the midpoint sum of the
+//!    zone's other elements, together with the part of it behind the zone's trailing end (μp
+//!    along FS3's direction there), scaled onto μp at its centre if above. The zone's force is
+//!    then exact. Centre sampling alone misses the Carter-type peak at the zone's trailing
+//!    end (in the linear regime ∝ (a_y + x)^{−1/2}): the linear limit converged only like
+//!    n^{−1/2}, −6.7 % at 40 elements per strip, −12 % at the wheel–rail patches' 24.
+//!    CONTACT samples at the centres; its printouts are reproduced with that sampling
+//!    (`ZoneSampling::Centres`, the test `contact_oracle_on_contacts_grid`). The Hertzian driver [`solve_ellipse`] places ny strips at the element
 //!    centres of `crate::tangential::fastsim` across [−b, b] and gives strip j round(nx a_y/a) ≥ 1 elements
 //!    over its exact length [−a_y, a_y], i.e. elements of ≈ 2a/nx as on FASTSIM's grid. It uses
 //!    F4-blended flexibilities for the direction pass (CONTACT's choice, `crate::tangential::fastsim`).
@@ -126,8 +135,9 @@
 //! and conventions Fy/(μN) = −0.64347 and Mz = −48.165 N·m at 40² (printout −0.6435, −4.816e4
 //! N·mm; frictional power 614.04 W, printout 614.0; adhesion elements 626 = 626), −0.64417,
 //! −47.568 N·m, 668.13 W and 15866 adhesion elements at 200² (−0.6442, −4.757e4, 668.1, 15866).
-//! [`solve_ellipse`] at 40 × 40: −0.6410 (−0.4 %), −48.148 N·m, 612.6 W; 200²: −0.6439, −47.578
-//! N·m; it converges (first order) to ≈ −0.6446 and ≈ −47.47 N·m.
+//! [`solve_ellipse`] (the adhesion zone integrated exactly, choice 5) at 40 × 40: −0.6396
+//! (−0.6 %), −48.191 N·m, 612.4 W; 200²: −0.6438, −47.582 N·m; it converges (first order) to
+//! ≈ −0.6447 and ≈ −47.46 N·m.
 //!
 //! # Known limits
 //!
@@ -136,11 +146,9 @@
 //! 1.5 % converged).
 //! FS3's λ uses φ*d/a while FS2 solves v² = s² + (η* + φ*v)² with v = (1−ν)d/a, so κ² + λ² = 1
 //! holds by normalisation rather than by FS2 (implemented as written — that is what reproduces
-//! CONTACT; see the open question in the report of this module). Point sampling of the
-//! Carter-type traction, whose linear-regime profile is singular like (a_y + x)^{−1/2} at the
-//! trailing edge, makes the linear limit converge only like n^{−1/2}: Fx and the η part of Fy
-//! are 6.7 % low with 40 elements per strip, 1.7 % with 640 (the spin part, regular, 0.2 %
-//! high at 40). Full sliding gives μ Σ p ΔA, the midpoint sum of the pressure. Steady rolling,
+//! CONTACT; see the open question in the report of this module). With the adhesion zone
+//! integrated exactly (choice 5) the linear limit on an ellipse is Kalker's up to the midpoint
+//! sum across the strips (+0.12 % at 40 strips; the spin part +0.03 %). Full sliding gives μ Σ p ΔA, the midpoint sum of the pressure. Steady rolling,
 //! constant μ, no slope reduction (F5). No heap allocation in [`solve_strip`].
 
 use crate::error::{require_finite, require_non_negative, require_positive, InputError};
@@ -149,7 +157,7 @@ use crate::tangential::fastsim::{
     SPIN_OFFSET_FRACTION,
 };
 use crate::tangential::kalker::{creep_coefficients, CreepCoefficients};
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Dimensionless FaStrip loading of a patch (FS1), from its (equivalent) ellipse.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -535,6 +543,7 @@ pub fn solve_strip(
         mu,
         flex,
         [xi, eta, phi],
+        ZoneSampling::ExactZone,
         qx,
         qy,
         slipping,
@@ -552,6 +561,7 @@ pub(crate) fn solve_strip_with_pressure(
     mu: f64,
     flex: [f64; 3],
     creepage: [f64; 3],
+    sampling: ZoneSampling,
     qx: &mut [f64],
     qy: &mut [f64],
     slipping: &mut [bool],
@@ -564,6 +574,7 @@ pub(crate) fn solve_strip_with_pressure(
         mu,
         flex,
         creepage,
+        sampling,
     };
     let out = StripRow { qx, qy, slipping };
     solve_elements(&problem, |i| grid_element(i, n), out)
@@ -597,6 +608,19 @@ pub(crate) struct StripProblem<'a> {
     pub(crate) flex: [f64; 3],
     /// (ξ, η, φ) of the strip [-, -, 1/m].
     pub(crate) creepage: [f64; 3],
+    /// How the adhesion zone's traction is integrated (module header, choice 5).
+    pub(crate) sampling: ZoneSampling,
+}
+
+/// How FS3 is integrated over the adhesion zone (module header, choice 5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum ZoneSampling {
+    /// Element centres, except the zone's trailing element, which takes the rest of the
+    /// zone's exact integral: the zone's force is exact.
+    ExactZone,
+    /// Element centres only (CONTACT's sampling; its printouts are reproduced with it).
+    #[cfg_attr(not(test), allow(dead_code))]
+    Centres,
 }
 
 /// The element outputs of one strip.
@@ -659,10 +683,10 @@ impl AdhesionZone {
         i
     }
 
-    /// FS3's traction (q_x, q_y) [Pa] at the centre ζ > −1 + 2δ of an element of the adhesion
-    /// zone (`root` = √(1 − ζ²)) if it stays within μ_s p (choice 2).
+    /// FS3's two roots at the centre ζ > −1 + 2δ of an element of the adhesion zone (`root` =
+    /// √(1 − ζ²)).
     #[inline]
-    fn traction(&self, zeta: f64, root: f64) -> Option<(f64, f64)> {
+    fn terms(&self, zeta: f64, root: f64) -> Fs3Terms {
         debug_assert!(zeta > self.start, "an element of the adhesion zone");
         let one_minus = 1.0 - zeta;
         let s1 = root;
@@ -673,16 +697,93 @@ impl AdhesionZone {
         } else {
             0.0
         };
-        let tx = self.mu_pmax_kappa * diff;
-        let ty = self.mu_pmax * (self.lambda * diff + self.spin * s2);
+        Fs3Terms { diff, s2 }
+    }
+
+    /// FS3's traction (q_x, q_y) [Pa] of `terms`.
+    #[inline]
+    fn traction_of(&self, terms: Fs3Terms) -> (f64, f64) {
+        (
+            self.mu_pmax_kappa * terms.diff,
+            self.mu_pmax * (self.lambda * terms.diff + self.spin * terms.s2),
+        )
+    }
+
+    /// FS3's traction (q_x, q_y) [Pa] of `terms` at an element centre where √(1 − ζ²) = `root`,
+    /// if it stays within μ_s p (choice 2).
+    #[inline]
+    fn traction(&self, terms: Fs3Terms, root: f64) -> Option<(f64, f64)> {
+        let (tx, ty) = self.traction_of(terms);
         if self.check_bound {
-            let bound = self.mu_pmax * s1 * (1.0 + BOUND_TOLERANCE);
+            let bound = self.mu_pmax * root * (1.0 + BOUND_TOLERANCE);
             if tx * tx + ty * ty > bound * bound {
                 return None;
             }
         }
         Some((tx, ty))
     }
+
+    /// `traction` scaled onto the bound μ_s p at an element centre where √(1 − ζ²) = `root` if
+    /// it exceeds it: the trailing element's mean may (the bound at its centre is not the mean
+    /// of the bound over it).
+    fn bounded(&self, traction: (f64, f64), root: f64) -> (f64, f64) {
+        let (tx, ty) = traction;
+        let bound = self.mu_pmax * root;
+        let sq = tx * tx + ty * ty;
+        if sq > bound * bound {
+            let scale = bound / sq.sqrt();
+            (tx * scale, ty * scale)
+        } else {
+            (tx, ty)
+        }
+    }
+
+    /// Element means of FS3's terms for the zone's trailing element, element `i` of `n`, given
+    /// the sums of the centre terms of the zone's other elements (choice 5): the integrals from
+    /// the element's trailing side ζ_l = −1 + 2i/n to the leading edge, less the other
+    /// elements' midpoint sums. Behind the zone's trailing end ζ₀ = −1 + 2δ (when ζ_l < ζ₀)
+    /// the traction is μ_s p along (κ, λ), FS3's value at ζ₀, i.e. S1 counts and S2 = 0 there;
+    /// when ζ_l > ζ₀ the zone's part before the element belongs to the slipping element behind.
+    /// With c(t) = [`trailing_cap`] and R = 1 − δ:
+    /// ∫ S2 dζ = (π/2)R² − R² c((ζ_l − ζ₀)/R)⁺ and
+    /// ∫ (S1 − S2) dζ = (π/2)δ(2 − δ) − c(ζ_l + 1) + R² c((ζ_l − ζ₀)/R)⁺
+    /// (no cancellation as δ → 0; no arc sine on the strip's first element).
+    fn trailing_terms(&self, i: usize, n: usize, others: Fs3Terms) -> Fs3Terms {
+        let h = 2.0 / n as f64;
+        let delta = 0.5 * self.two_delta;
+        let r = 1.0 - delta;
+        let trailing_side = i as f64 * h; // ζ_l + 1
+        let s1_before = if i == 0 {
+            0.0
+        } else {
+            trailing_cap(trailing_side)
+        };
+        let s2_before = if trailing_side > self.two_delta {
+            r * r * trailing_cap((trailing_side - self.two_delta) / r)
+        } else {
+            0.0
+        };
+        Fs3Terms {
+            diff: (FRAC_PI_2 * delta * (2.0 - delta) - s1_before + s2_before) / h - others.diff,
+            s2: (FRAC_PI_2 * r * r - s2_before) / h - others.s2,
+        }
+    }
+}
+
+/// c(t) = ∫ √(1 − u²) du over u ∈ (−1, −1 + t), t ∈ [0, 2] (clamped):
+/// asin√(t/2) − (1 − t)√((t/2)(1 − t/2)) (the cap's arc cosine written as 2 asin√(t/2), accurate
+/// as t → 0, where c ≈ (2√2/3) t^{3/2}).
+fn trailing_cap(t: f64) -> f64 {
+    let half = (0.5 * t).clamp(0.0, 1.0);
+    half.sqrt().asin() - (1.0 - 2.0 * half) * (half * (1.0 - half)).sqrt()
+}
+
+/// The two roots of FS3 at a point of the adhesion zone, or their element means: S1 − S2 and
+/// S2 with S1 = √(1 − ζ²), S2 = √((1 − δ)² − (ζ − δ)²).
+#[derive(Debug, Clone, Copy, Default)]
+struct Fs3Terms {
+    diff: f64,
+    s2: f64,
 }
 
 /// The FASTSIM direction pass over one strip (F3 in units of B = μ × the bound's peak
@@ -907,13 +1008,24 @@ fn solve_elements(
     let (qx, qy, slipping) = (&mut qx[..n], &mut qy[..n], &mut slipping[..n]);
     let mut acc = StripAccumulator::default();
     if let Some(zone) = &adhesion_zone {
+        // Centre terms of the zone's elements marched so far (choice 5).
+        let mut marched = Fs3Terms::default();
         for i in (first_adhesion..n).rev() {
             let (zeta, root) = element(i);
             let shape = shape_at(zeta, root);
             let xr = x_l * zeta;
             let pass_slip = pass.advance(xr, shape);
-            // Inside the zone FS3 only fails its bound check (choice 2).
-            let fs3 = zone.traction(zeta, root);
+            let terms = zone.terms(zeta, root);
+            // Inside the zone FS3 only fails its bound check (choice 2), at the element centre.
+            let mut fs3 = zone.traction(terms, root);
+            if i == first_adhesion && problem.sampling == ZoneSampling::ExactZone {
+                fs3 = fs3.map(|_| {
+                    zone.bounded(zone.traction_of(zone.trailing_terms(i, n, marched)), root)
+                });
+            } else {
+                marched.diff += terms.diff;
+                marched.s2 += terms.s2;
+            }
             let (tx, ty) =
                 fs3.unwrap_or_else(|| slip_zone.traction(&pass, pass_slip, xr, shape, &mut acc));
             acc.add(zeta, tx, ty, fs3.is_some());
@@ -1193,6 +1305,7 @@ pub fn solve_ellipse(
             mu,
             flexibilities,
             [xi, eta, phi],
+            ZoneSampling::ExactZone,
             &mut qx[..n_j],
             &mut qy[..n_j],
             &mut slipping[..n_j],
@@ -1301,7 +1414,8 @@ mod tests {
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// One strip of `n` elements, FS3 sampled at the element centres (the element formulas
+    /// the tests check; [`solve_strip`] integrates the adhesion zone exactly, choice 5).
     fn run_strip(
         strip: &FastripStrip,
         scales: &FastripScales,
@@ -1311,15 +1425,15 @@ mod tests {
         n: usize,
     ) -> (FastripStripSums, Buffers) {
         let mut buf = Buffers::new(n);
-        let s = solve_strip(
+        let pressure = StripPressure::scaled(strip, semi_ellipse_midpoint_ratio(n));
+        let s = solve_strip_with_pressure(
             strip,
+            pressure,
             scales,
             mu,
             flex,
-            k[0],
-            k[1],
-            k[2],
-            n,
+            k,
+            ZoneSampling::Centres,
             &mut buf.qx,
             &mut buf.qy,
             &mut buf.slipping,
@@ -1385,6 +1499,7 @@ mod tests {
                 MU,
                 flex,
                 [0.0, ETA, PHI],
+                ZoneSampling::Centres,
                 &mut buf.qx,
                 &mut buf.qy,
                 &mut buf.slipping,
@@ -1420,9 +1535,10 @@ mod tests {
     #[test]
     fn solve_ellipse_oracle_within_one_percent() {
         // Our own driver (exact strip lengths a_y, Hertz FS1 ellipse) differs from CONTACT's grid
-        // conventions by O(Δx): measured −0.6410 (−0.39 %) and −48.148 N·m (−0.03 %) at 40²;
-        // 1 % is the agreement the tests claim (docs/theory.md §6.5). At 200² against CONTACT's
-        // 200² printout (−0.6442, −47.57 N·m): measured −0.6439 (−0.04 %), −47.578 N·m (+0.02 %):
+        // conventions by O(Δx), and integrates the adhesion zone exactly where CONTACT samples
+        // it (choice 5): measured −0.6396 (−0.61 %) and −48.191 N·m (+0.06 %) at 40²; 1 % is the
+        // agreement the tests claim (docs/theory.md §6.5). At 200² against CONTACT's 200²
+        // printout (−0.6442, −47.57 N·m): measured −0.6438 (−0.06 %), −47.582 N·m (+0.03 %):
         // 0.2 %.
         let r = oracle(40);
         assert!(rel(r.fy / MU_N, -0.6435) < 0.01, "{}", r.fy / MU_N);
@@ -1448,17 +1564,17 @@ mod tests {
 
     #[test]
     fn linear_limit_matches_kalker() {
-        // Strip theory integrates exactly to Kalker's linear theory (module header), so the
-        // error is the grid's: the Carter-type profile ∝ √((a_y − x)/(a_y + x)) is sampled at
-        // element centres and its trailing-edge singularity makes the sum low by ≈ 0.42/√n_j
-        // (measured −6.65 % at 40 per strip, −1.69 % at 640, for ξ → Fx and η → Fy alike),
-        // while the spin part ∝ √(a_y² − x²) is regular (+0.19 % at 40). Bands: ξ, η in
-        // [−7.5 %, −5.5 %] at 40 and [−2 %, −1.4 %] at 640, their ratio within 4 ± 0.5
-        // (= √16, the n^{−1/2} law); spin within (0, 0.5 %) at 40, (0, 0.01 %) at 640. Signs per
+        // Strip theory integrates exactly to Kalker's linear theory (module header), and each
+        // strip's adhesion zone is integrated exactly (choice 5), so what remains is the sum
+        // across the strips: ξ → Fx and η → Fy add the strips' forces ∝ a_y, the midpoint sum
+        // of a semi-ellipse, whose error is `semi_ellipse_midpoint_ratio` − 1 (+0.12 % at 40
+        // strips, +0.0019 % at 640); both must equal it to 1e−6 (the rounding of the strip
+        // sums). The spin part, regular, converges faster: within (0, 0.05 %) at 40 and
+        // (0, 1e−5) at 640. (Sampled at the element centres alone, the Carter-type profile's
+        // peak at the adhesion zone's trailing end made them −6.7 % at 40 per strip.) Signs per
         // docs/conventions.md: Fx = −G ab C11 ξ, Fy = −G ab C22 η − G (ab)^{3/2} C23 φ.
         let c = coefficients();
         let g_ab = G * A * B;
-        let mut errs = Vec::new();
         for n in [40, 640] {
             let r = solve_ellipse(A, B, N, G, NU, MU, TINY, 0.0, 0.0, n, n).unwrap();
             assert_eq!(r.adhesion_fraction, 1.0);
@@ -1468,20 +1584,89 @@ mod tests {
             let r = solve_ellipse(A, B, N, G, NU, MU, 0.0, 0.0, TINY, n, n).unwrap();
             assert_eq!(r.adhesion_fraction, 1.0);
             let e_phi = r.fy / (-g_ab * (A * B).sqrt() * c.c23 * TINY) - 1.0;
-            assert!((e_xi - e_eta).abs() < 1e-6, "{e_xi} {e_eta}");
-            errs.push((e_xi, e_eta, e_phi));
+            let across = semi_ellipse_midpoint_ratio(n) - 1.0;
+            for e in [e_xi, e_eta] {
+                assert!((e - across).abs() < 1e-6, "{n}: {e} {across}");
+            }
+            let spin_band = if n == 40 { 5e-4 } else { 1e-5 };
+            assert!(e_phi > 0.0 && e_phi < spin_band, "{n}: {e_phi}");
         }
-        let (x40, y40, s40) = errs[0];
-        let (x640, y640, s640) = errs[1];
-        for e in [x40, y40] {
-            assert!((-0.075..-0.055).contains(&e), "{e}");
+    }
+
+    #[test]
+    fn adhesion_zone_force_is_exact() {
+        // Choice 5: the traction summed over the elements from the trailing side of the zone's
+        // trailing element to the leading edge equals FS3's integral over the zone plus μp along
+        // (κ, λ) behind the zone inside that element, computed here by a 200 000-point midpoint
+        // rule (its own error ≈ 1e−7 relative for the zone's √-type peak). Cases: partial slip
+        // with |φ*| < 1 (no bound check) for pure ξ, pure η, and mixed with spin, zone
+        // boundaries inside and across elements; a strip of 24 elements.
+        let n = 24;
+        let cases = [
+            (1e-5, 0.0, 0.0),
+            (4e-4, 0.0, 0.0),
+            (0.0, -7e-4, 0.0),
+            (2e-4, 3e-4, 0.1),
+        ];
+        for (xi, eta, phi) in cases {
+            let scales = scales_for(xi, eta, phi);
+            let flex = flex_for(xi, eta, phi);
+            let strip = hertz_strip(9, 24);
+            let rho = scales.traction_curvature * (strip.half_length / (MU * strip.pmax));
+            let theory = strip_theory(&scales, rho, strip.y, 0.0, strip.half_length, phi);
+            let StripTheory::Partial {
+                delta,
+                kappa,
+                lambda,
+                spin,
+            } = theory
+            else {
+                panic!("{xi} {eta} {phi}: partial slip expected");
+            };
+            assert!(spin.abs() < 1.0);
+            let mut buf = Buffers::new(n);
+            solve_strip(
+                &strip,
+                &scales,
+                MU,
+                flex,
+                xi,
+                eta,
+                phi,
+                n,
+                &mut buf.qx,
+                &mut buf.qy,
+                &mut buf.slipping,
+            );
+            let first = (0..n).find(|&i| !buf.slipping[i]).unwrap();
+            let h = 2.0 / n as f64;
+            let start = -1.0 + 2.0 * delta;
+            let from = -1.0 + first as f64 * h;
+            let (sx, sy) = (first..n).fold((0.0, 0.0), |(sx, sy), i| {
+                (sx + buf.qx[i] * h, sy + buf.qy[i] * h)
+            });
+            let m = 200_000;
+            let (mut ex, mut ey) = (0.0, 0.0);
+            for k in 0..m {
+                let z = from + (1.0 - from) * (k as f64 + 0.5) / m as f64;
+                let s1 = ((1.0 - z) * (1.0 + z)).sqrt();
+                let (d, s2) = if z > start {
+                    let s2 = ((1.0 - z) * (1.0 + z - 2.0 * delta)).max(0.0).sqrt();
+                    (s1 - s2, s2)
+                } else {
+                    (s1, 0.0)
+                };
+                ex += kappa * d;
+                ey += lambda * d + spin * s2;
+            }
+            let w = (1.0 - from) / m as f64 * MU * strip.pmax;
+            let (ex, ey) = (ex * w, ey * w);
+            let scale = ex.hypot(ey);
+            assert!(
+                (sx - ex).abs() < 1e-6 * scale && (sy - ey).abs() < 1e-6 * scale,
+                "{xi} {eta} {phi}: {sx} {ex} {sy} {ey}"
+            );
         }
-        for e in [x640, y640] {
-            assert!((-0.02..-0.014).contains(&e), "{e}");
-        }
-        assert!((3.5..4.5).contains(&(x40 / x640)), "{}", x40 / x640);
-        assert!(s40 > 0.0 && s40 < 0.005, "{s40}");
-        assert!(s640 > 0.0 && s640 < 1e-4, "{s640}");
     }
 
     #[test]

@@ -314,6 +314,7 @@ impl StripFastsim {
     ) -> StripFastsimResult {
         use crate::tangential::fastrip::{
             solve_strip_on_grid, FastripScales, FastripStrip, StripPressure, StripProblem,
+            ZoneSampling,
         };
         let nx = self.nx;
         let ratio = self.midpoint_ratio;
@@ -347,6 +348,7 @@ impl StripFastsim {
                 mu,
                 flex,
                 creepage: [k.xi, k.eta, k.phi],
+                sampling: ZoneSampling::ExactZone,
             };
             let sums = solve_strip_on_grid(
                 &problem,
