@@ -37,7 +37,7 @@
 //! # Choices (ours)
 //!
 //! * The half-lengths: Newton's method in ln a_i on the loaded set after each solve of C2–C3
-//!   (the derivative of G from KP6's I(1, T) = Ĵ'(T) in closed form, once per column and
+//!   (the derivative of G from T I(1, T) = dĴ/d ln T, tabulated beside Ĵ, once per column and
 //!   offset; a step changes ln a_i by at most [`STEP_LIMIT`]; a plain step x_i ← ln √(π y_i/r_i)
 //!   if the Newton matrix is singular), until every loaded strip's residual is below
 //!   [`LENGTH_TOL`] with the loaded set unchanged, or [`LENGTH_ITERATIONS`] solves (counted,
@@ -64,7 +64,7 @@
 //!   displacement: the strip lengths are as good as that ratio (against the exact half-space on
 //!   S1002/UIC60, −1…+6 mm: area −2.5…+2.2 %; Manchester A-2.2's flange states: −6…−8 %).
 //! * A changing pose costs 2–5 solves of C2–C3 per normal solve (a steady pose one): on the
-//!   hunting wheelset 4.4 M instructions per wheelset solve, 10.0 × ANALYN's (1.66 × steady).
+//!   hunting wheelset 3.8 M instructions per wheelset solve, 8.7 × ANALYN's (1.63 × steady).
 //! * The fixed point of C1–C4 is not proven unique: on a two-region gap (`two_wells(120)` of
 //!   the tests) two iteration schemes settled at normal forces 0.4 % apart; warm and cold starts
 //!   agree on the tested sequences (1e−9).
@@ -75,7 +75,7 @@
 use std::f64::consts::PI;
 
 use crate::geometry::strips::{PerStrip, StripGeometry, MAX_STRIPS};
-use crate::normal::kernel::{inner_integral, ScaledStripIntegral};
+use crate::normal::kernel::ScaledStripIntegral;
 use crate::normal::shape::{HertzShapeTable, SHAPE_TABLE_RANGE};
 use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
@@ -276,6 +276,7 @@ impl CoupledStrips {
         for q in 0..size {
             let c = self.block_index[q];
             let (a, y) = (self.half[c], self.load[c]);
+            let log_a = a.ln();
             let j = self.strip[c];
             // d/d ln a of Ĵ((k + ½)Δs/a) = −T I(1, T), once per offset k.
             let far = self.strip[first]
@@ -283,7 +284,7 @@ impl CoupledStrips {
                 .max(self.strip[last].abs_diff(j));
             for k in 0..=far {
                 let t = self.edge[k] / a;
-                self.edge_integral[k] = -t * inner_integral(1.0, t);
+                self.edge_integral[k] = -self.kernel.slope_at_log(t, self.log_edge[k] - log_a);
             }
             for (p, &r) in self.block_index[..size].iter().enumerate() {
                 let k = self.strip[r].abs_diff(j);
