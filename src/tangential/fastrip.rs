@@ -81,11 +81,12 @@
 //!    end (in the linear regime ∝ (a_y + x)^{−1/2}): the linear limit converged only like
 //!    n^{−1/2}, −6.7 % at 40 elements per strip, −12 % at the wheel–rail patches' 24.
 //!    CONTACT samples at the centres; its printouts are reproduced with that sampling
-//!    (`ZoneSampling::Centres`, the test `contact_oracle_on_contacts_grid`). The Hertzian driver [`solve_ellipse`] places ny strips at the element
-//!    centres of `crate::tangential::fastsim` across [−b, b] and gives strip j round(nx a_y/a) ≥ 1 elements
-//!    over its exact length [−a_y, a_y], i.e. elements of ≈ 2a/nx as on FASTSIM's grid. It uses
-//!    F4-blended flexibilities for the direction pass (CONTACT's choice, `crate::tangential::fastsim`).
-//!    CONTACT itself differs in two grid details, both reproduced by the test
+//!    (`ZoneSampling::Centres`, the test `contact_oracle_on_contacts_grid`).
+//!    The Hertzian driver [`solve_ellipse`] places ny strips at the element centres of
+//!    `crate::tangential::fastsim` across [−b, b] and gives strip j round(nx a_y/a) ≥ 1
+//!    elements over its exact length [−a_y, a_y], i.e. elements of ≈ 2a/nx as on FASTSIM's
+//!    grid. It uses F4-blended flexibilities for the direction pass (CONTACT's choice,
+//!    `crate::tangential::fastsim`). CONTACT itself differs in two grid details, both reproduced by the test
 //!    `contact_oracle_on_contacts_grid`: its strip half-length is that of the strip's grid
 //!    elements (n_j Δx/2, not a_y), and its FS1 ellipse is the Kik–Piotrowski equivalent ellipse
 //!    of the element division (8.023 × 4.012 mm instead of 8 × 4 on 40², with its own p0).
@@ -148,7 +149,8 @@
 //! holds by normalisation rather than by FS2 (implemented as written — that is what reproduces
 //! CONTACT; see the open question in the report of this module). With the adhesion zone
 //! integrated exactly (choice 5) the linear limit on an ellipse is Kalker's up to the midpoint
-//! sum across the strips (+0.12 % at 40 strips; the spin part +0.03 %). Full sliding gives μ Σ p ΔA, the midpoint sum of the pressure. Steady rolling,
+//! sum across the strips (+0.12 % at 40 strips; the spin part +0.03 %). Full sliding gives
+//! μ Σ p ΔA, the midpoint sum of the pressure. Steady rolling,
 //! constant μ, no slope reduction (F5). No heap allocation in [`solve_strip`].
 
 use crate::error::{require_finite, require_non_negative, require_positive, InputError};
