@@ -406,8 +406,8 @@ fn coupled_creep_curves_against_the_oracle() -> Vec<(f64, f64, f64)> {
 
 #[test]
 fn coupled_strips_creep_curves_against_the_exact_solution() {
-    // Measured (docs/validation.md): at 0 mm worst 4.0 %, mean 1.0 % of μN; at +2 mm worst
-    // 7.6 %, mean 1.6 % — FaStrip's strip theory on the +2 mm patch falls short of the exact
+    // Measured (docs/validation.md): at 0 mm worst 4.1 %, mean 1.0 % of μN; at +2 mm worst
+    // 7.7 %, mean 1.6 % — FaStrip's strip theory on the +2 mm patch falls short of the exact
     // forces by 5–8 % of μN where adhesion and slip share the patch (ANALYN + FaStrip likewise,
     // 6–9 %). Bounds: the measured figures with 0.5 % of μN for the oracle's own error, so that
     // a change that makes them worse fails here.
