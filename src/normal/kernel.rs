@@ -339,18 +339,14 @@ impl ScaledStripIntegral {
     pub(crate) fn new() -> Self {
         let remainder = RemainderTable::new();
         let nodes = ((SCALED_T_MAX / SCALED_T_MIN).ln() / TABLE_DU).ceil() as usize + 1;
+        let node = |k: usize| SCALED_T_MIN * (TABLE_DU * k as f64).exp();
         let values: Vec<f64> = (0..nodes)
-            .map(|k| {
-                remainder.integral_from_origin(1.0, SCALED_T_MIN * (TABLE_DU * k as f64).exp())
-            })
+            .map(|k| remainder.integral_from_origin(1.0, node(k)))
             .collect();
         let slopes: Vec<f64> = (0..nodes)
-            .map(|k| {
-                let t = SCALED_T_MIN * (TABLE_DU * k as f64).exp();
-                t * inner_integral(1.0, t)
-            })
+            .map(|k| node(k) * inner_integral(1.0, node(k)))
             .collect();
-        let t_last = SCALED_T_MIN * (TABLE_DU * (nodes - 1) as f64).exp();
+        let t_last = node(nodes - 1);
         let far_constant =
             values[nodes - 1] - FRAC_PI_2 * t_last.ln() - far_field_polynomial(t_last);
         Self {
@@ -369,31 +365,47 @@ impl ScaledStripIntegral {
 
     /// Ĵ(T) from `log_t` = ln T (and T itself, for the ends) [-]; 0 for T ≤ 0 or NaN.
     pub(crate) fn at_log(&self, t: f64, log_t: f64) -> f64 {
-        let x = (log_t - SCALED_T_MIN.ln()) / TABLE_DU;
-        if t.is_nan() || t <= 0.0 {
-            0.0
-        } else if x < 0.0 {
-            self.remainder.integral_from_origin(1.0, t)
-        } else if x >= (self.values.len() - 1) as f64 {
-            self.far_constant + FRAC_PI_2 * log_t + far_field_polynomial(t)
-        } else {
-            cubic_on_uniform_nodes(&self.values, x)
-        }
+        Self::look_up(
+            &self.values,
+            t,
+            log_t,
+            |t| self.remainder.integral_from_origin(1.0, t),
+            |t| self.far_constant + FRAC_PI_2 * log_t + far_field_polynomial(t),
+        )
     }
 
     /// dĴ/d ln T = T I(1, T) from `log_t` = ln T (and T itself) [-], as [`Self::at_log`]: one
     /// cubic interpolation inside the table, the direct function below it, the far-field series
     /// at and beyond its end; 0 for T ≤ 0 or NaN.
     pub(crate) fn slope_at_log(&self, t: f64, log_t: f64) -> f64 {
+        Self::look_up(
+            &self.slopes,
+            t,
+            log_t,
+            |t| t * inner_integral(1.0, t),
+            far_field_slope,
+        )
+    }
+
+    /// `table` (on the nodes T_k) at T from `log_t` = ln T: 0 for T ≤ 0 or NaN, `below(T)` under
+    /// the first node, `beyond(T)` at and past the last, else one cubic interpolation.
+    #[inline(always)]
+    fn look_up(
+        table: &[f64],
+        t: f64,
+        log_t: f64,
+        below: impl Fn(f64) -> f64,
+        beyond: impl Fn(f64) -> f64,
+    ) -> f64 {
         let x = (log_t - SCALED_T_MIN.ln()) / TABLE_DU;
         if t.is_nan() || t <= 0.0 {
             0.0
         } else if x < 0.0 {
-            t * inner_integral(1.0, t)
-        } else if x >= (self.slopes.len() - 1) as f64 {
-            far_field_slope(t)
+            below(t)
+        } else if x >= (table.len() - 1) as f64 {
+            beyond(t)
         } else {
-            cubic_on_uniform_nodes(&self.slopes, x)
+            cubic_on_uniform_nodes(table, x)
         }
     }
 

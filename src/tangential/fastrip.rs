@@ -78,19 +78,21 @@
 //!    it, together with its part behind the zone's trailing end (μp along FS3's direction
 //!    there), scaled onto μp at its centre if above; it counts as slipping when its centre lies
 //!    behind the zone. The zone's force is then exact, and the element's traction does not
-//!    jump as the zone's end crosses its centre. Centre sampling alone misses the Carter-type peak at the zone's trailing
-//!    end (in the linear regime ∝ (a_y + x)^{−1/2}): the linear limit converged only like
-//!    n^{−1/2}, −6.7 % at 40 elements per strip, −12 % at the wheel–rail patches' 24.
+//!    jump as the zone's end crosses its centre. Centre sampling alone misses the Carter-type
+//!    peak at the zone's trailing end (in the linear regime ∝ (a_y + x)^{−1/2}): the linear
+//!    limit converged only like n^{−1/2}, −6.7 % at 40 elements per strip, −12 % at the
+//!    wheel–rail patches' 24.
 //!    CONTACT samples at the centres; its printouts are reproduced with that sampling
 //!    (`ZoneSampling::Centres`, the test `contact_oracle_on_contacts_grid`).
 //!    The Hertzian driver [`solve_ellipse`] places ny strips at the element centres of
 //!    `crate::tangential::fastsim` across [−b, b] and gives strip j round(nx a_y/a) ≥ 1
 //!    elements over its exact length [−a_y, a_y], i.e. elements of ≈ 2a/nx as on FASTSIM's
 //!    grid. It uses F4-blended flexibilities for the direction pass (CONTACT's choice,
-//!    `crate::tangential::fastsim`). CONTACT itself differs in two grid details, both reproduced by the test
-//!    `contact_oracle_on_contacts_grid`: its strip half-length is that of the strip's grid
-//!    elements (n_j Δx/2, not a_y), and its FS1 ellipse is the Kik–Piotrowski equivalent ellipse
-//!    of the element division (8.023 × 4.012 mm instead of 8 × 4 on 40², with its own p0).
+//!    `crate::tangential::fastsim`). CONTACT itself differs in two grid details, both
+//!    reproduced by the test `contact_oracle_on_contacts_grid`: its strip half-length is that
+//!    of the strip's grid elements (n_j Δx/2, not a_y), and its FS1 ellipse is the
+//!    Kik–Piotrowski equivalent ellipse of the element division (8.023 × 4.012 mm instead of
+//!    8 × 4 on 40², with its own p0).
 //! 6. **Frictional power** (`power_density`): FaStrip gives no slip field of its own. The slip of
 //!    a slipping element is that of the FASTSIM pass in the same element, S = (L1 (p − p*)_x,
 //!    L2 (p − p*)_y) with p* the pass's adhesion trial (zero where the pass is in adhesion), as
@@ -1012,8 +1014,8 @@ fn solve_elements(
     // The element holding the zone's trailing end, which carries the rest of the zone's exact
     // integral (choice 5); it is `first_adhesion` or the one behind it.
     let trailing = match (&adhesion_zone, problem.sampling) {
-        (Some(zone), ZoneSampling::ExactZone) => zone.trailing_element(n),
-        _ => usize::MAX,
+        (Some(zone), ZoneSampling::ExactZone) => Some(zone.trailing_element(n)),
+        _ => None,
     };
     // Centre terms of the zone's elements ahead of the trailing one (choice 5).
     let mut marched = Fs3Terms::default();
@@ -1027,7 +1029,7 @@ fn solve_elements(
             let terms = zone.terms(zeta, root);
             // Inside the zone FS3 only fails its bound check (choice 2), at the element centre.
             let mut fs3 = zone.traction(terms, root);
-            if i == trailing {
+            if trailing == Some(i) {
                 fs3 = fs3.map(|_| zone.trailing_traction(i, n, marched, root));
             } else {
                 marched.diff += terms.diff;
@@ -1046,8 +1048,9 @@ fn solve_elements(
         let shape = shape_at(zeta, root);
         let xr = x_l * zeta;
         let pass_slip = pass.advance(xr, shape);
+        // (Also for the trailing element, for its frictional power: choice 6.)
         let mut traction = slip_zone.traction(&pass, pass_slip, xr, shape, &mut acc);
-        if let (true, Some(zone)) = (i == trailing, &adhesion_zone) {
+        if let (true, Some(zone)) = (trailing == Some(i), &adhesion_zone) {
             // Its centre lies behind the zone: it slips, with the zone's part of it.
             traction = zone.trailing_traction(i, n, marched, root);
         }
