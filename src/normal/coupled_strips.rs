@@ -79,6 +79,7 @@ use crate::normal::kernel::ScaledStripIntegral;
 use crate::normal::shape::{HertzShapeTable, SHAPE_TABLE_RANGE};
 use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
+use crate::numeric::dense::lu_solve;
 
 /// Relative tolerance of a complementarity violation u_i − (δ − f_i) < 0 at an unloaded strip,
 /// of the largest δ − f_i: rounding in the block solve is ~1e−15 of it.
@@ -306,7 +307,12 @@ impl CoupledStrips {
                     .map(|&c| row[c] * self.load[c] * self.residual_log[c])
                     .sum::<f64>();
         }
-        let newton = lu_solve(&mut self.block, size, &mut self.block_rhs[..size]);
+        let newton = lu_solve(
+            &mut self.block,
+            MAX_STRIPS,
+            size,
+            &mut self.block_rhs[..size],
+        );
         for p in 0..size {
             let r = self.block_index[p];
             let step = if newton {
@@ -366,7 +372,12 @@ impl CoupledStrips {
             }
             self.block_rhs[p] = self.rhs[r];
         }
-        if !lu_solve(&mut self.block, size, &mut self.block_rhs[..size]) {
+        if !lu_solve(
+            &mut self.block,
+            MAX_STRIPS,
+            size,
+            &mut self.block_rhs[..size],
+        ) {
             return false;
         }
         for p in 0..size {
@@ -478,56 +489,6 @@ impl CoupledStrips {
         self.update_residuals(m);
         converged
     }
-}
-
-/// Solves the `size`² system in `a` (row stride [`MAX_STRIPS`], overwritten) for `b` in place by
-/// Gaussian elimination with partial pivoting; `false` for a singular (or non-finite) matrix.
-fn lu_solve(a: &mut [f64], size: usize, b: &mut [f64]) -> bool {
-    for col in 0..size {
-        let mut pivot = col;
-        for r in col + 1..size {
-            if a[r * MAX_STRIPS + col].abs() > a[pivot * MAX_STRIPS + col].abs() {
-                pivot = r;
-            }
-        }
-        let p = a[pivot * MAX_STRIPS + col];
-        if !(p.abs() > 0.0 && p.is_finite()) {
-            return false;
-        }
-        if pivot != col {
-            for c in col..size {
-                a.swap(pivot * MAX_STRIPS + c, col * MAX_STRIPS + c);
-            }
-            b.swap(pivot, col);
-        }
-        // Rows below the pivot row, as slices (no index arithmetic in the inner loop).
-        let (upper, lower) = a.split_at_mut((col + 1) * MAX_STRIPS);
-        let pivot_row = &upper[col * MAX_STRIPS + col + 1..col * MAX_STRIPS + size];
-        let b_col = b[col];
-        for (k, row) in lower
-            .chunks_mut(MAX_STRIPS)
-            .take(size - col - 1)
-            .enumerate()
-        {
-            let factor = row[col] / p;
-            if factor != 0.0 {
-                for (x, u) in row[col + 1..size].iter_mut().zip(pivot_row) {
-                    *x -= factor * u;
-                }
-                b[col + 1 + k] -= factor * b_col;
-            }
-        }
-    }
-    for col in (0..size).rev() {
-        let row = &a[col * MAX_STRIPS..col * MAX_STRIPS + size];
-        let sum: f64 = row[col + 1..]
-            .iter()
-            .zip(&b[col + 1..size])
-            .map(|(u, x)| u * x)
-            .sum();
-        b[col] = (b[col] - sum) / row[col];
-    }
-    b.iter().all(|v| v.is_finite())
 }
 
 impl StripModel for CoupledStrips {

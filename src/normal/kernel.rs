@@ -15,6 +15,7 @@ use std::f64::consts::{E, FRAC_PI_2, PI};
 
 use crate::numeric::elliptic::complete_elliptic_from_complementary;
 use crate::numeric::interp::cubic_on_uniform_nodes;
+use crate::numeric::quadrature::gauss_legendre;
 
 /// Scale of the model kernel S(y) = 2c asinh(α/|y|): α = (2/e) c makes S's log singularity
 /// 2c(ln(4c/|y|) − 1) equal to I's (KP6 small-y asymptote, docs/theory.md §5.4).
@@ -33,22 +34,6 @@ const TAIL_START: f64 = 32.0;
 const TAIL_R1: f64 = FRAC_PI_2 - 4.0 / E;
 /// Second coefficient of the expansion of R (see [`TAIL_R1`]).
 const TAIL_R3: f64 = 8.0 / (3.0 * E * E * E) - PI / 16.0;
-
-/// 8-point Gauss–Legendre rule on [−1, 1]: positive nodes and their weights (Abramowitz &
-/// Stegun 1964, Table 25.4); exact for polynomials of degree ≤ 15 (tested).
-const GAUSS_NODES: [f64; 4] = [
-    0.183_434_642_495_649_8,
-    0.525_532_409_916_329,
-    0.796_666_477_413_626_7,
-    0.960_289_856_497_536_3,
-];
-/// Weights of [`GAUSS_NODES`].
-const GAUSS_WEIGHTS: [f64; 4] = [
-    0.362_683_783_378_362,
-    0.313_706_645_877_887_3,
-    0.222_381_034_453_374_5,
-    0.101_228_536_290_376_3,
-];
 
 /// KP6: I(c, y) = ∫_{−c}^{c} √(c² − x²)/√(x² + y²) dx = 2√(c² + y²) [K(k) − E(k)],
 /// k² = c²/(c² + y²) [m], for a strip half-length `c` = c > 0 and lateral distance `y` ≠ 0 [m].
@@ -116,17 +101,6 @@ fn kernel_remainder(c: f64, y: f64) -> f64 {
         return 0.0;
     }
     inner_integral(c, y) - model_kernel(c, y)
-}
-
-/// 8-point Gauss–Legendre integral of `g` over [lo, hi].
-fn gauss_legendre(lo: f64, hi: f64, g: impl Fn(f64) -> f64) -> f64 {
-    let mid = 0.5 * (lo + hi);
-    let half = 0.5 * (hi - lo);
-    let mut sum = 0.0;
-    for (node, weight) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS.iter()) {
-        sum += weight * (g(mid - half * node) + g(mid + half * node));
-    }
-    sum * half
 }
 
 /// ∫₀^Y R(c, y) dy for Y ≥ 0 [m²]: Gauss–Legendre on [0, min(Y, c)] in t = √(y/min(Y, c)),
@@ -446,22 +420,6 @@ mod tests {
         assert!(worst < 1e-15, "worst relative deviation {worst:e}");
         assert_eq!(asinh_non_negative(0.0), 0.0);
         assert_eq!(asinh_non_negative(f64::INFINITY), f64::INFINITY);
-    }
-
-    #[test]
-    fn gauss_legendre_rule_is_exact_to_degree_15() {
-        let exact = |k: i32| {
-            if k % 2 == 1 {
-                0.0
-            } else {
-                2.0 / (k + 1) as f64
-            }
-        };
-        for k in 0..=15 {
-            let q = gauss_legendre(-1.0, 1.0, |x| x.powi(k));
-            assert!((q - exact(k)).abs() < 1e-15, "x^{k}: {q}");
-        }
-        assert!((gauss_legendre(-1.0, 1.0, |x| x.powi(16)) - exact(16)).abs() > 1e-6);
     }
 
     #[test]
