@@ -489,7 +489,7 @@ fn wheels_that_do_not_fit_between_the_rails_fail_initialization() {
 // 2. Physical edge cases, for every normalModel × tangentialModel
 
 const NORMAL_MODELS: std::ops::RangeInclusive<i32> = 1..=6;
-const TANGENTIAL_MODELS: std::ops::RangeInclusive<i32> = 1..=4;
+const TANGENTIAL_MODELS: std::ops::RangeInclusive<i32> = 1..=5;
 
 /// Every (normalModel, tangentialModel) pair, with the context naming it in messages.
 fn model_pairs() -> impl Iterator<Item = (i32, i32, String)> {

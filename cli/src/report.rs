@@ -418,7 +418,10 @@ fn creep_figure(
     let others = TangentialModel::ALL[1..]
         .iter()
         .map(|&t| creep(NormalModel::Analyn, t))
-        .chain([creep(NormalModel::CoupledStrips, TangentialModel::Fastrip)])
+        .chain([
+            creep(NormalModel::CoupledStrips, TangentialModel::Fastrip),
+            creep(NormalModel::CoupledStrips, TangentialModel::FastripCoupled),
+        ])
         .collect::<Result<Vec<_>, _>>()?;
     let mut by_option: Vec<&CreepCurve> = own
         .iter()
@@ -433,8 +436,8 @@ fn creep_figure(
                 own.iter().collect(),
             ),
             (
-                "ANALYN with each tangential option (tangentialModel 1–4), Hertz, and the coupled \
-                 strips with FaStrip"
+                "ANALYN with each tangential option (tangentialModel 1–5), Hertz, and the coupled \
+                 strips with FaStrip (3, 5)"
                     .to_string(),
                 by_option,
             ),

@@ -28,6 +28,7 @@ use railcontact::material::Material;
 use railcontact::normal::hertz::contact_modulus;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::Creepage;
+use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult};
 use railcontact_halfspace::{solve, solve_rolling, Grid, Rolling, Solution, Target};
 
@@ -327,53 +328,72 @@ fn exact_rolling_reproduces_contact_creep_curves() {
     assert!(worst < 0.015, "worst {worst}");
 }
 
-/// The coupled strips with FaStrip on the planar patch (their best tangential option on the
-/// central case) against the rolling oracle at lateral shifts 0 and +2 mm: pure ξ and η from
-/// 5e−4 to 1e−2, without spin and with the spin of pure rolling, sin γ / r at the patch.
-/// Prints the curves and returns the (worst, mean) difference per shift in units of μN (mean
-/// over both force components of every point, as `tests/tangential.rs` does).
-fn coupled_creep_curves_against_the_oracle() -> Vec<(f64, f64, f64)> {
+/// The tangential options compared with the rolling oracle, on the coupled strips' planar patch.
+const CREEP_OPTIONS: [TangentialModel; 2] =
+    [TangentialModel::Fastrip, TangentialModel::FastripCoupled];
+
+/// The coupled strips with FaStrip (3) and FaStrip with coupled coefficients (5) on the planar
+/// patch against the rolling oracle at lateral shifts 0 and +2 mm: pure ξ and η from 5e−4 to
+/// 1e−2, without spin and with the spin of pure rolling, sin γ / r at the patch.
+/// Prints the curves and returns the (option, shift, worst, mean) difference in units of μN
+/// (mean over both force components of every point, as `tests/tangential.rs` does).
+fn coupled_creep_curves_against_the_oracle() -> Vec<(TangentialModel, f64, f64, f64)> {
     let material = Material {
         youngs_modulus: E,
         poisson_ratio: NU,
         friction: MU,
     };
-    let mut ws = common::benchmark_wheelset_with(material, |s| {
-        s.normal_model = NormalModel::CoupledStrips;
-        s.tangential = railcontact::tangential::patch::TangentialModel::Fastrip;
-        s.planar_patch = true;
-    });
+    let mut wheelsets: Vec<Wheelset> = CREEP_OPTIONS
+        .iter()
+        .map(|&t| {
+            common::benchmark_wheelset_with(material, |s| {
+                s.normal_model = NormalModel::CoupledStrips;
+                s.tangential = t;
+                s.planar_patch = true;
+            })
+        })
+        .collect();
     let steps = [5e-4, 1e-3, 2e-3, 5e-3, 1e-2];
     let mut summary = Vec::new();
     for y in [0.0, 2e-3] {
-        let rest = exact_normal(&mut ws, y, 0.0, Creepage::default(), ROLLING_ELEMENT);
+        let rest = exact_normal(
+            &mut wheelsets[0],
+            y,
+            0.0,
+            Creepage::default(),
+            ROLLING_ELEMENT,
+        );
         let patch = rest.out.right.patches[0];
         let spin = patch.contact_angle.sin() / patch.rolling_radius;
         // Linear limit: the creep stiffness for pure ξ and pure η of 1e−5 against the exact one.
-        // Measured 0.929 and 0.913 at 0 mm, 0.960 and 0.950 at +2 mm (FaStrip's adhesion zone
-        // integrated exactly; sampled at the element centres it was 0.87, 0.85, 0.90, 0.89).
-        // Bound 0.9: the lowest measured less the oracle's own 1.6–2.2 % excess stiffness on
-        // 0.5 mm elements (its unit test against Kalker's C11, C22).
+        // Measured with FaStrip 0.929 and 0.913 at 0 mm, 0.960 and 0.950 at +2 mm; with the
+        // coupled coefficients 0.957, 0.953, 0.988, 0.995. Bound 0.9: the lowest measured less
+        // the oracle's own 1.6–2.2 % excess stiffness on 0.5 mm elements (its unit test against
+        // Kalker's C11, C22).
         for (xi, eta) in [(1e-5, 0.0), (0.0, 1e-5)] {
             let creepage = Creepage { xi, eta, phi: 0.0 };
-            let o = exact_normal(&mut ws, y, 0.0, creepage, ROLLING_ELEMENT);
+            let o = exact_normal(&mut wheelsets[0], y, 0.0, creepage, ROLLING_ELEMENT);
             let (fx, fy) = exact_rolling(&o, creepage);
-            let p = o.out.right.patches[0];
-            let ratio = if xi > 0.0 {
-                p.fx / (MU * p.fn_) / fx
-            } else {
-                p.fy / (MU * p.fn_) / fy
-            };
-            println!(
-                "y {:+.0} mm ξ {xi:.0e} η {eta:.0e}: stiffness / exact {ratio:.3}",
-                y * 1e3
-            );
-            assert!(
-                (0.9..1.05).contains(&ratio),
-                "y {y} ξ {xi} η {eta}: {ratio}"
-            );
+            for (ws, t) in wheelsets.iter_mut().zip(CREEP_OPTIONS) {
+                let p = model_patch(ws, y, creepage);
+                let ratio = if xi > 0.0 {
+                    p.fx / (MU * p.fn_) / fx
+                } else {
+                    p.fy / (MU * p.fn_) / fy
+                };
+                println!(
+                    "y {:+.0} mm ξ {xi:.0e} η {eta:.0e} {}: stiffness / exact {ratio:.3}",
+                    y * 1e3,
+                    t.name()
+                );
+                assert!(
+                    (0.9..1.05).contains(&ratio),
+                    "y {y} ξ {xi} η {eta} {}: {ratio}",
+                    t.name()
+                );
+            }
         }
-        let (mut worst, mut sum, mut count): (f64, f64, usize) = (0.0, 0.0, 0);
+        let mut totals = [(0.0f64, 0.0f64, 0usize); CREEP_OPTIONS.len()];
         for phi in [0.0, spin] {
             let curves = steps
                 .iter()
@@ -381,49 +401,84 @@ fn coupled_creep_curves_against_the_oracle() -> Vec<(f64, f64, f64)> {
                 .chain(steps.iter().map(|&c| (0.0, c)));
             for (xi, eta) in curves {
                 let creepage = Creepage { xi, eta, phi };
-                let o = exact_normal(&mut ws, y, 0.0, creepage, ROLLING_ELEMENT);
+                let o = exact_normal(&mut wheelsets[0], y, 0.0, creepage, ROLLING_ELEMENT);
                 let (fx, fy) = exact_rolling(&o, creepage);
-                let p = o.out.right.patches[0];
-                let (mx, my) = (p.fx / (MU * p.fn_), p.fy / (MU * p.fn_));
-                let (ex, ey) = ((mx - fx).abs(), (my - fy).abs());
-                worst = worst.max(ex.max(ey));
-                sum += ex + ey;
-                count += 2;
-                println!(
-                    "y {:+.0} mm ξ {xi:.4} η {eta:.4} φ {phi:.4}: exact {fx:+.4} {fy:+.4} | \
-                     coupled + FaStrip {mx:+.4} {my:+.4} | {:.4}",
-                    y * 1e3,
-                    ex.max(ey)
+                let mut line = format!(
+                    "y {:+.0} mm ξ {xi:.4} η {eta:.4} φ {phi:.4}: exact {fx:+.4} {fy:+.4}",
+                    y * 1e3
                 );
+                for (k, ws) in wheelsets.iter_mut().enumerate() {
+                    let p = model_patch(ws, y, creepage);
+                    let (mx, my) = (p.fx / (MU * p.fn_), p.fy / (MU * p.fn_));
+                    let (ex, ey) = ((mx - fx).abs(), (my - fy).abs());
+                    let (worst, sum, count) = &mut totals[k];
+                    *worst = worst.max(ex.max(ey));
+                    *sum += ex + ey;
+                    *count += 2;
+                    line += &format!(
+                        " | {} {mx:+.4} {my:+.4} {:.4}",
+                        CREEP_OPTIONS[k].name(),
+                        ex.max(ey)
+                    );
+                }
+                println!("{line}");
             }
         }
-        let mean = sum / count as f64;
-        println!("y {:+.0} mm: worst {worst:.4}, mean {mean:.4}", y * 1e3);
-        summary.push((y, worst, mean));
+        for (t, (worst, sum, count)) in CREEP_OPTIONS.iter().zip(totals) {
+            let mean = sum / count as f64;
+            println!(
+                "y {:+.0} mm {}: worst {worst:.4}, mean {mean:.4}",
+                y * 1e3,
+                t.name()
+            );
+            summary.push((*t, y, worst, mean));
+        }
     }
     summary
 }
 
+/// The right wheel's first patch of `ws` at lateral shift `y` [m] with `creepage` prescribed.
+fn model_patch(
+    ws: &mut Wheelset,
+    y: f64,
+    creepage: Creepage,
+) -> railcontact::wheelset::PatchResult {
+    let input = WheelsetInput {
+        y,
+        yaw: 0.0,
+        roll: 0.0,
+        vertical: Vertical::Loads { left: Q, right: Q },
+        creepages: Creepages::Prescribed { creepage, vx: 2.0 },
+    };
+    let mut out = WheelsetResult::default();
+    ws.solve(&input, &mut out).expect("solve");
+    out.right.patches[0]
+}
+
 #[test]
 fn coupled_strips_creep_curves_against_the_exact_solution() {
-    // Measured (docs/validation.md): at 0 mm worst 4.1 %, mean 1.0 % of μN; at +2 mm worst
-    // 7.7 %, mean 1.6 % — FaStrip's strip theory on the +2 mm patch falls short of the exact
-    // forces by 5–8 % of μN where adhesion and slip share the patch (ANALYN + FaStrip likewise,
-    // 6–9 %). Bounds: the measured figures with 0.5 % of μN for the oracle's own error, so that
-    // a change that makes them worse fails here.
+    // Measured (docs/validation.md), worst and mean difference in units of μN:
+    //   FaStrip (3):                    0 mm 4.1 %, 1.0 %;  +2 mm 7.7 %, 1.6 %
+    //   FaStrip, coupled coefficients (5): 0 mm 2.3 %, 0.5 %;  +2 mm 2.1 %, 0.4 %
+    // Option 5 is held to the accuracy the coupled strips are built for (4 % at every point,
+    // 1.5 % on average; the oracle's own error on its 0.5 mm elements is ≤ 0.9 % of μN against
+    // CONTACT's 0.2 mm, `exact_rolling_reproduces_contact_creep_curves`). Option 3's bounds are
+    // its measured figures with 0.5 % of μN for the oracle's error, so that a change that makes
+    // them worse fails here.
     if !rolling_oracle_runs() {
         return;
     }
     let summary = coupled_creep_curves_against_the_oracle();
-    for (y, worst, mean) in summary {
-        let (worst_bound, mean_bound) = if y == 0.0 {
-            (0.045, 0.015)
-        } else {
-            (0.081, 0.021)
+    for (t, y, worst, mean) in summary {
+        let (worst_bound, mean_bound) = match (t, y == 0.0) {
+            (TangentialModel::FastripCoupled, _) => (0.04, 0.015),
+            (_, true) => (0.045, 0.015),
+            (_, false) => (0.081, 0.021),
         };
         assert!(
             worst < worst_bound && mean < mean_bound,
-            "y {y}: worst {worst}, mean {mean}"
+            "{} y {y}: worst {worst}, mean {mean}",
+            t.name()
         );
     }
 }

@@ -10,4 +10,5 @@ pub mod fastrip;
 pub mod fastsim;
 pub mod kalker;
 pub mod patch;
+pub mod strip_coefficients;
 pub mod strip_fastsim;

@@ -13,7 +13,10 @@
 //! 3. **FaStrip** (Sichani et al. 2016) on the equivalent ellipse (`crate::tangential::fastrip`);
 //! 4. **local Hertz ellipses** — STRIPES's strip-wise ellipses for any strip model: strip j gets
 //!    a_j = x_l,j and b_j = a_j/(a/b)_H, the Hertz axis ratio of its curvatures (A_j, max(B_j,
-//!    B_min)).
+//!    B_min));
+//! 5. **FaStrip with coupled coefficients** — FaStrip as in 3, each strip's creepages scaled by
+//!    its own creep coefficients from the strips coupled through the half-space in full
+//!    adhesion (`crate::tangential::strip_coefficients`, docs/theory.md §6.6).
 //!
 //! FASTSIM's flexibility option (`flexibility`: three, single F2, blended F4) applies per strip to
 //! that strip's ellipse and creepages; the blending weight F4 uses the equivalent ellipse's
@@ -43,19 +46,30 @@ pub enum TangentialModel {
     Fastrip,
     /// 4: strip-wise local Hertz ellipses (STRIPES's).
     LocalEllipses,
+    /// 5: FaStrip with strip-wise creep coefficients from the half-space.
+    FastripCoupled,
 }
 
 impl TangentialModel {
-    pub const ALL: [TangentialModel; 4] = [
+    pub const ALL: [TangentialModel; 5] = [
         TangentialModel::ModelDefault,
         TangentialModel::EquivalentEllipse,
         TangentialModel::Fastrip,
         TangentialModel::LocalEllipses,
+        TangentialModel::FastripCoupled,
     ];
 
-    /// From the FMU code 1–4.
+    /// From the FMU code 1–5.
     pub fn from_code(code: i32) -> Option<Self> {
         Self::ALL.get(usize::try_from(code - 1).ok()?).copied()
+    }
+
+    /// Whether the option runs FaStrip (3, 5) rather than FASTSIM.
+    pub fn is_fastrip(self) -> bool {
+        matches!(
+            self,
+            TangentialModel::Fastrip | TangentialModel::FastripCoupled
+        )
     }
 
     /// Short name (CLI, docs).
@@ -65,15 +79,16 @@ impl TangentialModel {
             TangentialModel::EquivalentEllipse => "equivalent-ellipse",
             TangentialModel::Fastrip => "fastrip",
             TangentialModel::LocalEllipses => "local-ellipses",
+            TangentialModel::FastripCoupled => "fastrip-coupled",
         }
     }
 
     /// Where the strips' flexibilities come from for normal model `normal`.
     pub fn flexibility_source(self, normal: NormalModel) -> FlexibilitySource {
         match self {
-            TangentialModel::EquivalentEllipse | TangentialModel::Fastrip => {
-                FlexibilitySource::EquivalentEllipse
-            }
+            TangentialModel::EquivalentEllipse
+            | TangentialModel::Fastrip
+            | TangentialModel::FastripCoupled => FlexibilitySource::EquivalentEllipse,
             TangentialModel::LocalEllipses => FlexibilitySource::LocalHertz,
             TangentialModel::ModelDefault => match normal {
                 NormalModel::Linder => FlexibilitySource::ModelLocal,

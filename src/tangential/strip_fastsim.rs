@@ -64,6 +64,8 @@ use crate::tangential::fastrip::{semi_ellipse_midpoint_ratio, StripGrid};
 use crate::tangential::fastsim::{
     strip_outs, Creepage, FastsimResult, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP,
 };
+use crate::tangential::kalker::CreepCoefficients;
+use crate::tangential::strip_coefficients::{CouplingStrip, StripCoefficients};
 use std::sync::Arc;
 
 /// Largest element count per strip (the FMU's `nx` range).
@@ -177,6 +179,12 @@ pub struct StripFastsim {
     midpoint_ratio: f64,
     /// FaStrip's element centres and semi-ellipse on a strip of `nx` elements.
     fastrip_grid: Arc<StripGrid>,
+    /// The strip-wise creep coefficients' solver and its strips (sized on first use).
+    coupling: StripCoefficients,
+    coupling_strips: Vec<CouplingStrip>,
+    /// FaStrip's per-strip factors (C11_j/C11, C22_j/C22) on its starred creepages (1 without
+    /// the coupled coefficients).
+    gains: Vec<(f64, f64)>,
 }
 
 /// The bound's shape √(1 − u_i²) at the element centres of a strip of `nx` elements, scaled so
@@ -213,7 +221,19 @@ impl StripFastsim {
             shape: bound_shape(nx, midpoint_ratio),
             midpoint_ratio,
             fastrip_grid: Arc::new(StripGrid::new(nx)),
+            coupling: StripCoefficients::default(),
+            coupling_strips: Vec::new(),
+            gains: vec![(1.0, 1.0); MAX_STRIPS],
         })
+    }
+
+    /// Sizes the buffers of FaStrip's coupled coefficients for patches of up to `n_strips`
+    /// strips (and builds their kernel table), so that [`Self::solve_fastrip`] with `coupled`
+    /// does not allocate.
+    pub fn reserve_coupled(&mut self, n_strips: usize) {
+        let n = n_strips.min(MAX_STRIPS);
+        self.coupling = StripCoefficients::with_capacity(n);
+        self.coupling_strips = Vec::with_capacity(n);
     }
 
     /// Solves the patch made of `strips` (at most [`MAX_STRIPS`]; strips out of contact are
@@ -304,13 +324,18 @@ impl StripFastsim {
     /// tractions in each strip's adhesion zone, μ p in the FASTSIM pass's direction in its slip
     /// zone, with FS1's dimensionless creepages from the patch's equivalent ellipse `equivalent`
     /// (its Kalker coefficients and peak pressure 3N/(2π a_e b_e)) and each strip's own creepages
-    /// (the strip's spin also in the lever term). Same outputs and buffers as
-    /// [`StripFastsim::solve`]; no allocation.
+    /// (the strip's spin also in the lever term). With `coupled`, strip j's starred ξ and φ
+    /// are scaled by C11_j/C11 and its η by C22_j/C22, its own coefficients from the strips
+    /// coupled through the half-space (`crate::tangential::strip_coefficients`; the ellipse's
+    /// where that system cannot be solved). Same outputs and buffers as
+    /// [`StripFastsim::solve`]; no allocation (the coupled coefficients' buffers are sized on
+    /// first use).
     pub fn solve_fastrip(
         &mut self,
         strips: &[TangentialStrip],
         equivalent: &crate::tangential::patch::EquivalentEllipse,
         speed: f64,
+        coupled: bool,
     ) -> StripFastsimResult {
         use crate::tangential::fastrip::{
             solve_strip_on_grid, FastripScales, FastripStrip, StripPressure, StripProblem,
@@ -326,12 +351,21 @@ impl StripFastsim {
             FastripScales::new(a_e, b_e, coefficients, g, nu, mu, p0_e, 0.0, 0.0, 0.0);
         // A shared handle on the grid (no allocation), so that the solve can borrow `self`.
         let grid = Arc::clone(&self.fastrip_grid);
-        self.run(strips, speed, |strip, px_row, py_row, slip_row| {
+        let n = strips.len().min(MAX_STRIPS);
+        self.gains[..n].fill((1.0, 1.0));
+        if coupled {
+            self.coupled_gains(&strips[..n], nu, coefficients);
+        }
+        // `run` visits the strips in order: the gains go by a running index.
+        let gains = std::mem::take(&mut self.gains);
+        let mut next = gains.iter();
+        let result = self.run(strips, speed, |strip, px_row, py_row, slip_row| {
+            let (gain_x, gain_y) = next.next().copied().unwrap_or((1.0, 1.0));
             if !(strip.half_length > 0.0 && strip.pmax > 0.0 && strip.width > 0.0) {
                 return None;
             }
             let k = strip.creepage;
-            let scales = patch_scales.with_creepage(k.xi, k.eta, k.phi);
+            let scales = patch_scales.with_creepage(k.xi * gain_x, k.eta * gain_y, k.phi * gain_x);
             let strip_input = FastripStrip {
                 y: strip.lever,
                 x_c: strip.x_c,
@@ -367,7 +401,43 @@ impl StripFastsim {
                 n_elements: sums.n_elements,
                 n_adhesion: sums.n_adhesion,
             })
-        })
+        });
+        self.gains = gains;
+        result
+    }
+
+    /// Fills `gains` with (C11_j/C11, C22_j/C22) of the strips coupled through the half-space
+    /// (Poisson ratio `nu`) against the ellipse's `coefficients`; leaves them at 1 if the
+    /// coupled system fails or a ratio is not a positive finite number.
+    fn coupled_gains(
+        &mut self,
+        strips: &[TangentialStrip],
+        nu: f64,
+        coefficients: &CreepCoefficients,
+    ) {
+        self.coupling_strips.clear();
+        self.coupling_strips
+            .extend(strips.iter().map(|t| CouplingStrip {
+                s: t.lever,
+                width: t.width,
+                x_c: t.x_c,
+                half_length: t.half_length,
+            }));
+        let n = strips.len();
+        let out = &mut self.gains[..n];
+        if !self.coupling.solve(&self.coupling_strips, nu, out) {
+            out.fill((1.0, 1.0));
+            return;
+        }
+        let usable = |r: f64| r.is_finite() && r > 0.0;
+        for g in out.iter_mut() {
+            let (rx, ry) = (g.0 / coefficients.c11, g.1 / coefficients.c22);
+            *g = if usable(rx) && usable(ry) {
+                (rx, ry)
+            } else {
+                (1.0, 1.0)
+            };
+        }
     }
 
     /// Marches the strips of `group` (strip index, march, x step; 2, 4 or [`MAX_GROUP`] of

@@ -403,7 +403,14 @@ impl Wheelset {
                     Vec::new()
                 } else {
                     (0..MAX_GROUPS)
-                        .map(|_| StripFastsim::new(settings.fastsim.nx, settings.fastsim.scheme))
+                        .map(|_| {
+                            let mut solver =
+                                StripFastsim::new(settings.fastsim.nx, settings.fastsim.scheme)?;
+                            if settings.tangential == TangentialModel::FastripCoupled {
+                                solver.reserve_coupled(settings.strips);
+                            }
+                            Ok::<_, InputError>(solver)
+                        })
                         .collect::<Result<_, _>>()?
                 },
                 tangential_strips: vec![TangentialStrip::default(); MAX_STRIPS],

@@ -544,8 +544,9 @@ fn solve_strip_tangential(
     }
     let solver = &mut side.strip_fastsim[slot];
     let mu = ctx.material.friction;
-    let t = if settings.tangential == TangentialModel::Fastrip {
-        solver.solve_fastrip(&side.tangential_strips[..n], equivalent, speed)
+    let t = if settings.tangential.is_fastrip() {
+        let coupled = settings.tangential == TangentialModel::FastripCoupled;
+        solver.solve_fastrip(&side.tangential_strips[..n], equivalent, speed, coupled)
     } else {
         solver.solve(&side.tangential_strips[..n], mu, speed)
     };

@@ -110,7 +110,7 @@ def test_nan_and_infinities_of_every_real_parameter_and_input_are_rejected(new_h
         ("WheelRailContact", "nStrips", 0, r"integer in \[5, 200\]"),
         ("WheelRailContact", "nStrips", 201, r"integer in \[5, 200\]"),
         ("WheelRailContact", "normalModel", 8, r"integer in \[1, 7\]"),
-        ("WheelRailContact", "tangentialModel", 0, r"integer in \[1, 4\]"),
+        ("WheelRailContact", "tangentialModel", 0, r"integer in \[1, 5\]"),
         ("WheelRailContact", "ny", 0, r"integer in \[1, 1000\]"),
         ("HertzContact", "N", -1.0, r"\[0, 100000000\] \[N\]"),
         ("HertzContact", "B", 0.0, r"\[0.001, 100000\] \[1/m\]"),

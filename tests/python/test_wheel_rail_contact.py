@@ -462,7 +462,7 @@ def test_central_case_area_and_pmax_through_the_fmu(new_wrc) -> None:
 # ---------------------------------------------------------------------------------------------
 # 6. Tangential contact on non-elliptic patches (tangentialModel 1–4, planarPatch)
 
-TANGENTIAL_MODELS = {1: "model's own", 2: "equivalent ellipse", 3: "FaStrip", 4: "local ellipses"}
+TANGENTIAL_MODELS = {1: "model's own", 2: "equivalent ellipse", 3: "FaStrip", 4: "local ellipses", 5: "FaStrip, coupled coefficients"}
 
 
 @pytest.mark.parametrize("planar", [True, False])
@@ -505,7 +505,7 @@ def test_pure_spin_through_the_fmu(new_wrc) -> None:
 
 
 @pytest.mark.parametrize(
-    ("variable", "value", "largest"), [("normalModel", 8, 7), ("tangentialModel", 5, 4)]
+    ("variable", "value", "largest"), [("normalModel", 8, 7), ("tangentialModel", 6, 5)]
 )
 def test_model_option_out_of_range_is_rejected_and_logged(new_wrc, variable: str, value: int, largest: int) -> None:
     slave = new_wrc(initialize=False)

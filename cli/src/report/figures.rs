@@ -640,6 +640,7 @@ pub fn option_label(t: TangentialModel) -> String {
         TangentialModel::EquivalentEllipse => "FASTSIM, equivalent ellipse",
         TangentialModel::Fastrip => "FaStrip",
         TangentialModel::LocalEllipses => "FASTSIM, local ellipses",
+        TangentialModel::FastripCoupled => "FaStrip, coupled coefficients",
     };
     format!(
         "tangentialModel {}: {name}",
@@ -795,6 +796,9 @@ fn creep_look(c: &CreepCurve, by_option: bool) -> Look {
         TangentialModel::EquivalentEllipse => base.with(LineKind::Dashed, Marker::Triangle),
         TangentialModel::Fastrip => Look { width: 3, ..base }.with(LineKind::Solid, Marker::Square),
         TangentialModel::LocalEllipses => base.with(LineKind::Dotted, Marker::Cross),
+        TangentialModel::FastripCoupled => {
+            Look { width: 3, ..base }.with(LineKind::Dashed, Marker::Circle)
+        }
     }
 }
 
