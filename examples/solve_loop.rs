@@ -14,7 +14,7 @@
 //! model (`hertz`, `linder`, `kik-piotrowski`, `stripes-b`, `stripes-ab`, `analyn`,
 //! `coupled-strips`), the number
 //! of solves, then optionally the motion (`steady`, `moving` or `hunting`), the tangential model
-//! on strip patches (`model-default`, `equivalent-ellipse`, `fastrip`, `local-ellipses`) and
+//! on strip patches (`model-default`, `equivalent-ellipse`, `fastrip`, `local-ellipses`, `fastrip-coupled`) and
 //! `planar` for planar strip patches.
 
 use railcontact::normal::NormalModel;

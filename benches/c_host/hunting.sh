@@ -33,6 +33,8 @@ CONFIGS=(
   "ANALYN+FaStrip 6 3 0"
   "coupled+FASTSIM 7 1 0"
   "coupled+FaStrip,planar 7 3 1"
+  "ANALYN+FaStrip-coupled,planar 6 5 1"
+  "coupled+FaStrip-coupled,planar 7 5 1"
 )
 declare -A BASE BASE_CPU
 for MOTION in hunting steady; do
