@@ -488,7 +488,7 @@ fn wheels_that_do_not_fit_between_the_rails_fail_initialization() {
 // =============================================================================================
 // 2. Physical edge cases, for every normalModel × tangentialModel
 
-const NORMAL_MODELS: std::ops::RangeInclusive<i32> = 1..=6;
+const NORMAL_MODELS: std::ops::RangeInclusive<i32> = 1..=7;
 const TANGENTIAL_MODELS: std::ops::RangeInclusive<i32> = 1..=5;
 
 /// Every (normalModel, tangentialModel) pair, with the context naming it in messages.
@@ -1520,7 +1520,7 @@ fn corrupted_serialized_states_are_rejected_and_change_nothing() {
 /// 8 configurations: normal and tangential models and a seed each.
 fn configurations() -> Vec<(i32, i32, u64)> {
     (0..8)
-        .map(|i| (1 + i % 6, 1 + (i * 3 / 2) % 4, 1000 + i as u64))
+        .map(|i| (1 + i % 7, 1 + (i * 3 / 2) % 5, 1000 + i as u64))
         .collect()
 }
 

@@ -504,7 +504,7 @@ impl Document<'_> {
         let _ = writeln!(
             md,
             "railcontact's normal models (`normalModel` 1–7) and tangential options \
-             (`tangentialModel` 1–4) against CONTACT, which solves Kalker's exact half-space \
+             (`tangentialModel` 1–5) against CONTACT, which solves Kalker's exact half-space \
              theory, on the central case of `tests/data/README.md`: normal contact (patch area, \
              maximum pressure, maximum pressure per strip), pure spin (forces, spin moment, slip \
              zone) and creep-force curves. CONTACT's numbers are read from its solutions in the reference \

@@ -321,6 +321,12 @@ pub struct StripCoefficients {
     tau_y: Vec<f64>,
     /// Indices of the loaded strips.
     loaded: Vec<usize>,
+    /// The last solve's input, Poisson ratio, coefficients and success: a repeated patch (a
+    /// steady pose) returns them without solving again.
+    last_strips: Vec<CouplingStrip>,
+    last_nu: f64,
+    last_out: Vec<(f64, f64)>,
+    last_ok: bool,
 }
 
 impl StripCoefficients {
@@ -334,14 +340,38 @@ impl StripCoefficients {
             tau_x: Vec::with_capacity(n),
             tau_y: Vec::with_capacity(n),
             loaded: Vec::with_capacity(n),
+            last_strips: Vec::with_capacity(n),
+            last_nu: f64::NAN,
+            last_out: Vec::with_capacity(n),
+            last_ok: false,
         }
     }
 
     /// The coefficients (C11_j, C22_j) of `strips` with Poisson ratio `nu`, written into `out`
-    /// (strips that carry nothing get (0, 0)); the buffers grow if more strips are loaded than
+    /// (at least as long as `strips`; strips that carry nothing get (0, 0)); the buffers grow if more strips are loaded than
     /// they were sized for. Returns `false` if the system is singular or
     /// not finite (then `out` is left as it was): the caller keeps its ellipse's coefficients.
     pub fn solve(&mut self, strips: &[CouplingStrip], nu: f64, out: &mut [(f64, f64)]) -> bool {
+        if nu == self.last_nu && strips == self.last_strips.as_slice() {
+            if self.last_ok {
+                out[..strips.len()].copy_from_slice(&self.last_out);
+            }
+            return self.last_ok;
+        }
+        let ok = self.solve_anew(strips, nu, out);
+        self.last_strips.clear();
+        self.last_strips.extend_from_slice(strips);
+        self.last_nu = nu;
+        self.last_out.clear();
+        if ok {
+            self.last_out.extend_from_slice(&out[..strips.len()]);
+        }
+        self.last_ok = ok;
+        ok
+    }
+
+    /// [`Self::solve`] without the repeated-patch shortcut.
+    fn solve_anew(&mut self, strips: &[CouplingStrip], nu: f64, out: &mut [(f64, f64)]) -> bool {
         self.loaded.clear();
         self.loaded.extend((0..strips.len()).filter(|&j| {
             let s = &strips[j];
@@ -678,6 +708,26 @@ mod tests {
                 assert!(change < 2e-6, "{change}");
             }
         }
+    }
+
+    #[test]
+    fn a_repeated_patch_is_not_solved_again() {
+        // The shortcut returns the last solution; any change of the input solves anew.
+        let nu = 0.28;
+        let strips = ellipse_strips(6e-3, 5e-3, 12);
+        let mut solver = StripCoefficients::with_capacity(12);
+        let mut first = vec![(0.0, 0.0); 12];
+        assert!(solver.solve(&strips, nu, &mut first));
+        let mut again = vec![(0.0, 0.0); 12];
+        assert!(solver.solve(&strips, nu, &mut again));
+        assert_eq!(first, again);
+        let mut longer = strips.clone();
+        longer[5].half_length *= 1.1;
+        assert!(solver.solve(&longer, nu, &mut again));
+        assert_eq!(again, solved(&longer, nu));
+        assert_ne!(again[5], first[5]);
+        assert!(solver.solve(&strips, 0.3, &mut again));
+        assert_eq!(again, solved(&strips, 0.3));
     }
 
     #[test]

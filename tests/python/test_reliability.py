@@ -262,7 +262,7 @@ def as_inputs(rows: np.ndarray) -> list[dict[str, float]]:
 
 
 CONFIGS = [
-    {"normalModel": 1 + i % 7, "tangentialModel": 1 + (3 * i // 2) % 4, "planarPatch": i % 3 == 0} for i in range(8)
+    {"normalModel": 1 + i % 7, "tangentialModel": 1 + (3 * i // 2) % 5, "planarPatch": i % 3 == 0} for i in range(8)
 ]
 
 # One instance in its own process: the same FMPy calls as `Slave` (set each input, doStep, one

@@ -802,13 +802,14 @@ fn creep_look(c: &CreepCurve, by_option: bool) -> Look {
     }
 }
 
-/// Whether a row's curves differ in tangential option (same normal model, several options).
+/// Whether a row's curves differ in tangential option (a normal model with several options).
 fn compares_options(curves: &[&CreepCurve]) -> bool {
-    let strips: Vec<&&CreepCurve> = curves
-        .iter()
-        .filter(|c| c.model != NormalModel::Hertz)
-        .collect();
-    strips.len() > 1 && strips.iter().all(|c| c.model == strips[0].model)
+    curves.iter().enumerate().any(|(i, a)| {
+        a.model != NormalModel::Hertz
+            && curves[i + 1..]
+                .iter()
+                .any(|b| b.model == a.model && b.tangential != a.tangential)
+    })
 }
 
 fn creep_label(c: &CreepCurve, by_option: bool) -> String {
