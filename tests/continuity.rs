@@ -13,6 +13,7 @@ mod common;
 
 use common::builtin_wheelset_with;
 use railcontact::normal::NormalModel;
+use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::{
     Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, MAX_PATCHES,
 };
@@ -48,6 +49,11 @@ fn largest_change(a: &[f64; 6], b: &[f64; 6]) -> f64 {
 /// resolution (1e−7) with margin.
 const BALANCE_TOLERANCE: f64 = 1e-6;
 
+/// The same with FaStrip (`tangentialModel` 3 and 5): its creep forces' vertical component is
+/// only piecewise smooth in the wheel height at the 1e−5 level (docs/performance.md), where the
+/// creep iteration's passes can end before 1e−7; measured up to 1.6e−5 on the lateral sweeps.
+const FASTRIP_BALANCE_TOLERANCE: f64 = 5e-5;
+
 struct Sweep {
     ws: Wheelset,
     load: f64,
@@ -55,16 +61,39 @@ struct Sweep {
     /// Worst change that survived bisection, and where.
     worst: (f64, f64),
     solves: usize,
+    /// Largest relative miss of the wheel load a pose may show, and the largest seen.
+    balance_tolerance: f64,
+    worst_balance: f64,
 }
 
 impl Sweep {
     fn new(model: NormalModel, load: f64) -> Self {
+        Self::with_tangential(model, TangentialModel::ModelDefault, false, load)
+    }
+
+    /// A sweep of `model` with tangential option `tangential`, planar patches or not.
+    fn with_tangential(
+        model: NormalModel,
+        tangential: TangentialModel,
+        planar: bool,
+        load: f64,
+    ) -> Self {
         Self {
-            ws: builtin_wheelset_with(|s| s.normal_model = model),
+            ws: builtin_wheelset_with(|s| {
+                s.normal_model = model;
+                s.tangential = tangential;
+                s.planar_patch = planar;
+            }),
             load,
             out: WheelsetResult::default(),
             worst: (0.0, 0.0),
             solves: 0,
+            balance_tolerance: if tangential.is_fastrip() {
+                FASTRIP_BALANCE_TOLERANCE
+            } else {
+                BALANCE_TOLERANCE
+            },
+            worst_balance: 0.0,
         }
     }
 
@@ -93,8 +122,10 @@ impl Sweep {
         self.solves += 1;
         let f = forces(&self.out);
         for fz in [f[2], f[5]] {
+            let miss = (fz + self.load).abs() / self.load;
+            self.worst_balance = self.worst_balance.max(miss);
             assert!(
-                (fz + self.load).abs() <= BALANCE_TOLERANCE * self.load,
+                miss <= self.balance_tolerance,
                 "{p:?}: Fz {fz} for {}",
                 self.load
             );
@@ -174,9 +205,11 @@ impl Sweep {
 
 fn check(label: &str, sweep: &Sweep) {
     eprintln!(
-        "{label}: {} solves, largest change surviving bisection {:.3} % of Q",
+        "{label}: {} solves, largest change surviving bisection {:.3} % of Q, load missed by \
+         at most {:.1e}",
         sweep.solves,
-        100.0 * sweep.worst.0 / sweep.load
+        100.0 * sweep.worst.0 / sweep.load,
+        sweep.worst_balance
     );
     assert!(
         sweep.worst.0 <= JUMP * sweep.load,
@@ -199,6 +232,37 @@ fn lateral_sweeps_have_no_force_jump() {
                 roll: 0.0,
             });
             check(&format!("{} yaw {yaw}", model.name()), &sweep);
+        }
+    }
+}
+
+/// The lateral sweeps with FaStrip's strip-wise coefficients from the half-space
+/// (`tangentialModel` 5), whose coupled strips change as strips enter and leave contact: ANALYN
+/// planar and non-planar, the coupled strips planar, yaw 0 and 5 mrad.
+#[test]
+fn lateral_sweeps_with_coupled_coefficients_have_no_force_jump() {
+    let n = (18e-3 / STEP).round() as usize;
+    let cases = [
+        (NormalModel::Analyn, true),
+        (NormalModel::Analyn, false),
+        (NormalModel::CoupledStrips, true),
+    ];
+    for (model, planar) in cases {
+        for yaw in [0.0, 5e-3] {
+            let mut sweep =
+                Sweep::with_tangential(model, TangentialModel::FastripCoupled, planar, 78_500.0);
+            sweep.walk(n, |t| Pose {
+                y: -8e-3 + 18e-3 * t,
+                yaw,
+                roll: 0.0,
+            });
+            check(
+                &format!(
+                    "{} + fastrip-coupled planar {planar} yaw {yaw}",
+                    model.name()
+                ),
+                &sweep,
+            );
         }
     }
 }

@@ -154,6 +154,18 @@ pub struct StripElementTraction {
     pub slipping: bool,
 }
 
+/// Range of FaStrip's per-strip factors C_j/C from the coupled coefficients
+/// (`crate::tangential::strip_coefficients`). On the built-in profiles' tread patches (−3…+4 mm,
+/// ANALYN and coupled strips) they lie within 0.15–1.9, the lowest on the short strips at a
+/// patch's lateral ends, which carry little force (clamping them changes the validated creep
+/// curves by < 1e−4 μN); in flange-root and flange contact (+5…+7 mm), where a strip lies beside
+/// one twice as long, the one-point collocation gives factors from below zero to 7. The clamp
+/// keeps those from the force, continuously: the load balance's creep iteration needs a map
+/// without jumps.
+const GAIN_MIN: f64 = 0.25;
+/// See [`GAIN_MIN`].
+const GAIN_MAX: f64 = 4.0;
+
 /// FASTSIM over strips with preallocated buffers.
 #[derive(Debug, Clone)]
 pub struct StripFastsim {
@@ -326,8 +338,8 @@ impl StripFastsim {
     /// (its Kalker coefficients and peak pressure 3N/(2π a_e b_e)) and each strip's own creepages
     /// (the strip's spin also in the lever term). With `coupled`, strip j's starred ξ and φ
     /// are scaled by C11_j/C11 and its η by C22_j/C22, its own coefficients from the strips
-    /// coupled through the half-space (`crate::tangential::strip_coefficients`; the ellipse's
-    /// where that system cannot be solved). Same outputs and buffers as
+    /// coupled through the half-space (`crate::tangential::strip_coefficients`; the ratios
+    /// clamped to [0.25, 4], the ellipse's where that system cannot be solved). Same outputs and buffers as
     /// [`StripFastsim::solve`]; no allocation (the coupled coefficients' buffers are sized on
     /// first use).
     pub fn solve_fastrip(
@@ -429,14 +441,17 @@ impl StripFastsim {
             out.fill((1.0, 1.0));
             return;
         }
-        let usable = |r: f64| r.is_finite() && r > 0.0;
-        for g in out.iter_mut() {
-            let (rx, ry) = (g.0 / coefficients.c11, g.1 / coefficients.c22);
-            *g = if usable(rx) && usable(ry) {
-                (rx, ry)
+        // Clamped (continuously) into [GAIN_MIN, GAIN_MAX]: a strip beside a much longer one
+        // can get a coefficient near or below zero from the single collocation point.
+        let gain = |r: f64| {
+            if r.is_nan() {
+                1.0
             } else {
-                (1.0, 1.0)
-            };
+                r.clamp(GAIN_MIN, GAIN_MAX)
+            }
+        };
+        for g in out.iter_mut() {
+            *g = (gain(g.0 / coefficients.c11), gain(g.1 / coefficients.c22));
         }
     }
 
