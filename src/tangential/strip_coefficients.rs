@@ -77,8 +77,9 @@
 //! strip; no coupling between the x and y problems; spin enters FaStrip with the longitudinal
 //! coefficient of its strip (its lever term ξ − φy is a longitudinal rigid slip; with the
 //! lateral one the worst creep-curve error against the exact theory grows from 2.3 to 2.7 % of
-//! μN). Strips are taken as parallel, in the patch's plane. Cost: n² kernel pairs per patch
-//! (~0.35 M instructions per patch of the default strips, docs/performance.md).
+//! μN). Strips are taken as parallel, in the patch's plane, and of equal width (an edge through
+//! another strip's collocation point, v = 0, would make the kernel jump). Cost: n² kernel pairs
+//! per patch (~0.18 M instructions per solve of a patch of 24 strips, docs/performance.md).
 
 use std::f64::consts::PI;
 use std::sync::OnceLock;
@@ -87,7 +88,7 @@ use crate::numeric::dense::lu_solve;
 use crate::numeric::interp::cubic_lagrange_weights;
 use crate::numeric::quadrature::gauss_legendre;
 
-/// Half-width of the table in u = (c_i − c_j)/a_j [-].
+/// Half-width of the table in u = (c_i + κ a_i − c_j)/a_j [-].
 const TABLE_U: f64 = 4.0;
 /// Nodes per unit of u.
 const NODES_PER_U: f64 = 64.0;
