@@ -49,10 +49,12 @@ fn largest_change(a: &[f64; 6], b: &[f64; 6]) -> f64 {
 /// resolution (1e−7) with margin.
 const BALANCE_TOLERANCE: f64 = 1e-6;
 
-/// The same with FaStrip (`tangentialModel` 3 and 5): its creep forces' vertical component is
-/// only piecewise smooth in the wheel height at the 1e−5 level (docs/performance.md), where the
-/// creep iteration's passes can end before 1e−7; measured up to 1.6e−5 on the lateral sweeps.
-const FASTRIP_BALANCE_TOLERANCE: f64 = 5e-5;
+/// The same with FaStrip (`tangentialModel` 3 and 5): its traction is only piecewise continuous
+/// in the wheel height at the 1e−5 level of the load (where the adhesion zone's trailing end
+/// crosses an element boundary, the element behind it turns from FS3's direction to the FASTSIM
+/// pass's), and the creep iteration's passes can end at such a step before reaching 1e−7;
+/// measured up to 1.7e−5 (release sweeps) and 5.1e−5 (debug sweeps, other poses).
+const FASTRIP_BALANCE_TOLERANCE: f64 = 2e-4;
 
 struct Sweep {
     ws: Wheelset,
