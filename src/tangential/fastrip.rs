@@ -75,10 +75,15 @@
 //!    elements per strip, with one exception: the element holding the adhesion zone's trailing
 //!    end carries the rest of FS3's exact integral over the zone (closed form in arc sines,
 //!    `AdhesionZone::trailing_terms`) after the midpoint sum of the zone's elements ahead of
-//!    it, together with its part behind the zone's trailing end (μp along FS3's direction
-//!    there), scaled onto μp at its centre if above; it counts as slipping when its centre lies
-//!    behind the zone. The zone's force is then exact, and the element's traction does not
-//!    jump as the zone's end crosses its centre. Centre sampling alone misses the Carter-type
+//!    it, together with the slip zone's traction of the element (μp at its centre, FASTSIM's
+//!    direction) times the pressure's share of the element behind the zone's trailing end,
+//!    scaled onto μp at its centre if above; it counts as slipping when its centre lies behind
+//!    the zone. The zone's force is then exact, and the element's traction does not jump as the
+//!    zone's end crosses its centre or its sides: at its trailing side it is the zone's exact
+//!    mean, at its leading side the slip element's traction. (With the part behind the zone
+//!    along FS3's direction instead, the element turned to FASTSIM's direction as the zone's
+//!    end left it, a step of ~1e−5 of the load in the wheel's creep forces that stopped the
+//!    load balance's creep iteration short of its tolerance.) Centre sampling alone misses the Carter-type
 //!    peak at the zone's trailing end (in the linear regime ∝ (a_y + x)^{−1/2}): the linear
 //!    limit converged only like n^{−1/2}, −6.7 % at 40 elements per strip, −12 % at the
 //!    wheel–rail patches' 24.
@@ -139,9 +144,9 @@
 //! and conventions Fy/(μN) = −0.64347 and Mz = −48.165 N·m at 40² (printout −0.6435, −4.816e4
 //! N·mm; frictional power 614.04 W, printout 614.0; adhesion elements 626 = 626), −0.64417,
 //! −47.568 N·m, 668.13 W and 15866 adhesion elements at 200² (−0.6442, −4.757e4, 668.1, 15866).
-//! [`solve_ellipse`] (the adhesion zone integrated exactly, choice 5) at 40 × 40: −0.6413
-//! (−0.3 %), −47.933 N·m, 612.4 W; 200²: −0.6440, −47.556 N·m; it converges (between the
-//! orders 1/2 and 1) to ≈ −0.6448 and ≈ −47.47 N·m.
+//! [`solve_ellipse`] (the adhesion zone integrated exactly, choice 5) at 40 × 40: −0.6397
+//! (−0.6 %), −48.171 N·m, 612.5 W; 200²: −0.6438, −47.578 N·m, 668.6 W; its Fy converges (order
+//! ≈ 1.2) to ≈ −0.6445.
 //!
 //! # Known limits
 //!
@@ -735,41 +740,65 @@ impl AdhesionZone {
         ((n as f64 * (0.5 * self.two_delta)) as usize).min(n - 1)
     }
 
-    /// Traction (q_x, q_y) [Pa] of the trailing element `i` of `n` ([`Self::trailing_terms`]),
-    /// scaled onto the bound μ_s p at its centre (√(1 − ζ²) = `root`) if above: its mean may
-    /// exceed it (the bound at the centre is not the bound's mean over the element).
-    fn trailing_traction(&self, i: usize, n: usize, ahead: Fs3Terms, root: f64) -> (f64, f64) {
-        let (tx, ty) = self.traction_of(self.trailing_terms(i, n, ahead));
+    /// Traction (q_x, q_y) [Pa] of the trailing element `i` of `n`: the zone's part
+    /// ([`Self::trailing_terms`]) plus the slip zone's traction `slip` of the element (μ_s p at
+    /// its centre along the FASTSIM pass's direction, choice 3) times the pressure's share of
+    /// the element behind the zone's trailing end ([`Self::behind_share`]), the sum scaled onto
+    /// the bound μ_s p at its centre (√(1 − ζ²) = `root`) if above: its mean may exceed it.
+    /// Returns the traction and that share.
+    fn trailing_traction(
+        &self,
+        i: usize,
+        n: usize,
+        ahead: Fs3Terms,
+        root: f64,
+        slip: (f64, f64),
+    ) -> ((f64, f64), f64) {
+        let behind = self.behind_share(i, n);
+        let (zx, zy) = self.traction_of(self.trailing_terms(n, ahead));
+        let (tx, ty) = (zx + behind * slip.0, zy + behind * slip.1);
         let bound = self.mu_pmax * root;
         let sq = tx * tx + ty * ty;
-        if sq > bound * bound {
+        let traction = if sq > bound * bound {
             let scale = bound / sq.sqrt();
             (tx * scale, ty * scale)
         } else {
             (tx, ty)
+        };
+        (traction, behind)
+    }
+
+    /// The share of the trailing element `i` of `n` behind the zone's trailing end ζ₀, weighted
+    /// by the strip's semi-elliptic pressure: [c(ζ₀ + 1) − c(ζ_l + 1)] / [c(ζ_l + 1 + h) −
+    /// c(ζ_l + 1)] with c = [`trailing_cap`], ζ_l = −1 + ih, h = 2/n (0 at ζ₀ = ζ_l, 1 at the
+    /// element's leading side; ~(nδ)^{3/2} in the first element, so that the linear regime keeps
+    /// Kalker's stiffness).
+    fn behind_share(&self, i: usize, n: usize) -> f64 {
+        let h = 2.0 / n as f64;
+        let from = i as f64 * h;
+        let at_from = if i == 0 { 0.0 } else { trailing_cap(from) };
+        let element = trailing_cap(from + h) - at_from;
+        if element > 0.0 {
+            ((trailing_cap(self.two_delta) - at_from) / element).clamp(0.0, 1.0)
+        } else {
+            0.0
         }
     }
 
-    /// Element means of FS3's terms for the trailing element `i` of `n` (the one holding the
-    /// zone's trailing end ζ₀ = −1 + 2δ), given the sums of the centre terms of the zone's
-    /// elements ahead of it (choice 5): the integrals from the element's trailing side
-    /// ζ_l = −1 + 2i/n ≤ ζ₀ to the leading edge, less the midpoint sums ahead. Behind ζ₀ the
-    /// traction is μ_s p along (κ, λ), FS3's value at ζ₀: S1 counts and S2 = 0 there. With
-    /// c(t) = [`trailing_cap`] and R = 1 − δ: ∫ S2 dζ = (π/2)R² and
-    /// ∫ (S1 − S2) dζ = (π/2)δ(2 − δ) − c(ζ_l + 1) (no cancellation as δ → 0, no arc sine on
-    /// a strip's first element). The element's traction is thus continuous as ζ₀ crosses its
-    /// centre, where its centre leaves the zone.
-    fn trailing_terms(&self, i: usize, n: usize, ahead: Fs3Terms) -> Fs3Terms {
+    /// Element means of FS3's terms over the zone's part of the trailing element `i` of `n`
+    /// (the one holding the zone's trailing end ζ₀ = −1 + 2δ), given the sums of the centre
+    /// terms of the zone's elements ahead of it (choice 5): the integrals from ζ₀ to the
+    /// leading edge, less the midpoint sums ahead. With c(t) = [`trailing_cap`] and R = 1 − δ:
+    /// ∫ S2 dζ = (π/2)R² and ∫ (S1 − S2) dζ = (π/2)δ(2 − δ) − c(2δ) (no cancellation as δ → 0).
+    /// With the share behind ζ₀ carried at the slip zone's traction ([`Self::trailing_traction`])
+    /// the element's traction is continuous as ζ₀ crosses its centre and its sides: at its
+    /// trailing side it is the zone's exact mean, at its leading side a slip element's.
+    fn trailing_terms(&self, n: usize, ahead: Fs3Terms) -> Fs3Terms {
         let h = 2.0 / n as f64;
         let delta = 0.5 * self.two_delta;
         let r = 1.0 - delta;
-        let behind = if i == 0 {
-            0.0
-        } else {
-            trailing_cap(i as f64 * h)
-        };
         Fs3Terms {
-            diff: (FRAC_PI_2 * delta * (2.0 - delta) - behind) / h - ahead.diff,
+            diff: (FRAC_PI_2 * delta * (2.0 - delta) - trailing_cap(2.0 * delta)) / h - ahead.diff,
             s2: FRAC_PI_2 * r * r / h - ahead.s2,
         }
     }
@@ -1030,7 +1059,14 @@ fn solve_elements(
             // Inside the zone FS3 only fails its bound check (choice 2), at the element centre.
             let mut fs3 = zone.traction(terms, root);
             if trailing == Some(i) {
-                fs3 = fs3.map(|_| zone.trailing_traction(i, n, marched, root));
+                if fs3.is_some() {
+                    // Its share behind the zone slips (with that share of the slip's power).
+                    let mut own = StripAccumulator::default();
+                    let slip = slip_zone.traction(&pass, pass_slip, xr, shape, &mut own);
+                    let (traction, behind) = zone.trailing_traction(i, n, marched, root, slip);
+                    acc.add_power(behind * own.power);
+                    fs3 = Some(traction);
+                }
             } else {
                 marched.diff += terms.diff;
                 marched.s2 += terms.s2;
@@ -1048,12 +1084,18 @@ fn solve_elements(
         let shape = shape_at(zeta, root);
         let xr = x_l * zeta;
         let pass_slip = pass.advance(xr, shape);
-        // (Also for the trailing element, for its frictional power: choice 6.)
-        let mut traction = slip_zone.traction(&pass, pass_slip, xr, shape, &mut acc);
-        if let (true, Some(zone)) = (trailing == Some(i), &adhesion_zone) {
-            // Its centre lies behind the zone: it slips, with the zone's part of it.
-            traction = zone.trailing_traction(i, n, marched, root);
-        }
+        let traction = match (trailing == Some(i), &adhesion_zone) {
+            (true, Some(zone)) => {
+                // Its centre lies behind the zone: it slips, with the zone's part of it (and
+                // the share behind the zone of the slip's power, choice 6).
+                let mut own = StripAccumulator::default();
+                let slip = slip_zone.traction(&pass, pass_slip, xr, shape, &mut own);
+                let (traction, behind) = zone.trailing_traction(i, n, marched, root, slip);
+                acc.add_power(behind * own.power);
+                traction
+            }
+            _ => slip_zone.traction(&pass, pass_slip, xr, shape, &mut acc),
+        };
         let (tx, ty) = traction;
         acc.add(zeta, tx, ty, false);
         qx[i] = tx;
@@ -1578,9 +1620,9 @@ mod tests {
     fn solve_ellipse_oracle_within_one_percent() {
         // Our own driver (exact strip lengths a_y, Hertz FS1 ellipse) differs from CONTACT's grid
         // conventions by O(Δx), and integrates the adhesion zone exactly where CONTACT samples
-        // it (choice 5): measured −0.6413 (−0.34 %) and −47.933 N·m (−0.47 %) at 40²; 1 % is the
+        // it (choice 5): measured −0.6397 (−0.59 %) and −48.171 N·m (+0.02 %) at 40²; 1 % is the
         // agreement the tests claim (docs/theory.md §6.5). At 200² against CONTACT's 200²
-        // printout (−0.6442, −47.57 N·m): measured −0.6440 (−0.03 %), −47.556 N·m (−0.03 %):
+        // printout (−0.6442, −47.57 N·m): measured −0.6438 (−0.06 %), −47.578 N·m (+0.02 %):
         // 0.2 %.
         let r = oracle(40);
         assert!(rel(r.fy / MU_N, -0.6435) < 0.01, "{}", r.fy / MU_N);
@@ -1593,12 +1635,12 @@ mod tests {
         let r = oracle(200);
         assert!(rel(r.fy / MU_N, -0.6442) < 0.002, "{}", r.fy / MU_N);
         assert!(rel(r.mz, -47.57) < 0.002, "{}", r.mz);
-        // Monotone convergence between the orders 1/2 and 1 (the 40 → 80 step 1.41 to 2 times
-        // the 80 → 160 step; measured 1.47).
+        // Monotone convergence of order 1/2 to ~1.4 (the 40 → 80 step 1.41 to 2.6 times the
+        // 80 → 160 step; measured 2.29, order ≈ 1.2).
         let f = |n| oracle(n).fy / MU_N;
         let (f40, f80, f160) = (f(40), f(80), f(160));
         let ratio = (f80 - f40) / (f160 - f80);
-        assert!((1.3..2.2).contains(&ratio), "{ratio}");
+        assert!((1.3..2.6).contains(&ratio), "{ratio}");
     }
 
     /// Tiny creepage: every element in adhesion, the linear regime.
@@ -1610,8 +1652,10 @@ mod tests {
         // strip's adhesion zone is integrated exactly (choice 5), so what remains is the sum
         // across the strips: ξ → Fx and η → Fy add the strips' forces ∝ a_y, the midpoint sum
         // of a semi-ellipse, whose error is `semi_ellipse_midpoint_ratio` − 1 (+0.12 % at 40
-        // strips, +0.0019 % at 640); both must equal it to 1e−6 (the rounding of the strip
-        // sums). The spin part, regular, converges faster: within (0, 0.05 %) at 40 and
+        // strips, +0.0019 % at 640), and the share of the zone's trailing element behind the
+        // zone, which carries the slip element's centre value (6 % above the pressure's mean
+        // over a strip's first element): both must equal the first to 1e−4 (measured 2.7e−5 at
+        // 40). The spin part, regular, converges faster: within (0, 0.05 %) at 40 and
         // (0, 1e−5) at 640. (Sampled at the element centres alone, the Carter-type profile's
         // peak at the adhesion zone's trailing end made them −6.7 % at 40 per strip.) Signs per
         // docs/conventions.md: Fx = −G ab C11 ξ, Fy = −G ab C22 η − G (ab)^{3/2} C23 φ.
@@ -1628,7 +1672,7 @@ mod tests {
             let e_phi = r.fy / (-g_ab * (A * B).sqrt() * c.c23 * TINY) - 1.0;
             let across = semi_ellipse_midpoint_ratio(n) - 1.0;
             for e in [e_xi, e_eta] {
-                assert!((e - across).abs() < 1e-6, "{n}: {e} {across}");
+                assert!((e - across).abs() < 1e-4, "{n}: {e} {across}");
             }
             let spin_band = if n == 40 { 5e-4 } else { 1e-5 };
             assert!(e_phi > 0.0 && e_phi < spin_band, "{n}: {e_phi}");
@@ -1662,11 +1706,12 @@ mod tests {
     #[test]
     fn adhesion_zone_force_is_exact() {
         // Choice 5: the traction summed over the elements from the trailing side of the zone's
-        // trailing element to the leading edge equals FS3's integral over the zone plus μp along
-        // (κ, λ) behind the zone inside that element, computed here by a 200 000-point midpoint
-        // rule (its own error ≈ 1e−7 relative for the zone's √-type peak). Cases: partial slip
-        // with |φ*| < 1 (no bound check) for pure ξ, pure η, and mixed with spin, zone
-        // boundaries inside and across elements; a strip of 24 elements.
+        // trailing element to the leading edge equals FS3's integral over the zone, computed
+        // here by a 200 000-point midpoint rule (its own error ≈ 1e−7 relative for the zone's
+        // √-type peak), plus the slip zone's traction of that element (μ_s p at its centre)
+        // times the pressure's share of it behind the zone. Cases: partial slip with |φ*| < 1
+        // (no bound check) for pure ξ, pure η, and mixed with spin, zone boundaries inside and
+        // across elements; a strip of 24 elements.
         let n = 24;
         let cases = [
             (1e-5, 0.0, 0.0),
@@ -1695,30 +1740,34 @@ mod tests {
             let first = (n as f64 * delta) as usize;
             let h = 2.0 / n as f64;
             let start = -1.0 + 2.0 * delta;
-            let from = -1.0 + first as f64 * h;
             let (sx, sy) = (first..n).fold((0.0, 0.0), |(sx, sy), i| {
                 (sx + buf.qx[i] * h, sy + buf.qy[i] * h)
             });
             let m = 200_000;
             let (mut ex, mut ey) = (0.0, 0.0);
             for k in 0..m {
-                let z = from + (1.0 - from) * (k as f64 + 0.5) / m as f64;
+                let z = start + (1.0 - start) * (k as f64 + 0.5) / m as f64;
                 let s1 = ((1.0 - z) * (1.0 + z)).sqrt();
-                let (d, s2) = if z > start {
-                    let s2 = ((1.0 - z) * (1.0 + z - 2.0 * delta)).max(0.0).sqrt();
-                    (s1 - s2, s2)
-                } else {
-                    (s1, 0.0)
-                };
-                ex += kappa * d;
-                ey += lambda * d + spin * s2;
+                let s2 = ((1.0 - z) * (1.0 + z - 2.0 * delta)).max(0.0).sqrt();
+                ex += kappa * (s1 - s2);
+                ey += lambda * (s1 - s2) + spin * s2;
             }
-            let w = (1.0 - from) / m as f64 * MU * strip.pmax;
+            let w = (1.0 - start) / m as f64 * MU * strip.pmax;
             let (ex, ey) = (ex * w, ey * w);
+            // The share behind the zone, by the semi-ellipse's caps, and the slip traction's
+            // magnitude at the element centre (the bound scaled by the midpoint ratio).
+            let from = first as f64 * h;
+            let share = (trailing_cap(2.0 * delta) - trailing_cap(from))
+                / (trailing_cap(from + h) - trailing_cap(from));
+            let zeta = -1.0 + from + 0.5 * h;
+            let slip = MU * strip.pmax * ((1.0 - zeta) * (1.0 + zeta)).sqrt()
+                / semi_ellipse_midpoint_ratio(n);
+            let behind = (sx - ex).hypot(sy - ey);
             let scale = ex.hypot(ey);
             assert!(
-                (sx - ex).abs() < 1e-6 * scale && (sy - ey).abs() < 1e-6 * scale,
-                "{xi} {eta} {phi}: {sx} {ex} {sy} {ey}"
+                (behind - share * slip * h).abs() < 1e-6 * scale,
+                "{xi} {eta} {phi}: {sx} {ex} {sy} {ey}, behind {behind} {}",
+                share * slip * h
             );
         }
     }
