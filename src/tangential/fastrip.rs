@@ -754,8 +754,10 @@ impl AdhesionZone {
         root: f64,
         slip: (f64, f64),
     ) -> ((f64, f64), f64) {
-        let behind = self.behind_share(i, n);
-        let (zx, zy) = self.traction_of(self.trailing_terms(n, ahead));
+        // c(2δ), the cap of S1 behind the zone, shared by the zone's part and the share behind.
+        let zone_cap = trailing_cap(self.two_delta);
+        let behind = self.behind_share(i, n, zone_cap);
+        let (zx, zy) = self.traction_of(self.trailing_terms(n, ahead, zone_cap));
         let (tx, ty) = (zx + behind * slip.0, zy + behind * slip.1);
         let bound = self.mu_pmax * root;
         let sq = tx * tx + ty * ty;
@@ -770,35 +772,35 @@ impl AdhesionZone {
 
     /// The share of the trailing element `i` of `n` behind the zone's trailing end ζ₀, weighted
     /// by the strip's semi-elliptic pressure: [c(ζ₀ + 1) − c(ζ_l + 1)] / [c(ζ_l + 1 + h) −
-    /// c(ζ_l + 1)] with c = [`trailing_cap`], ζ_l = −1 + ih, h = 2/n (0 at ζ₀ = ζ_l, 1 at the
-    /// element's leading side; ~(nδ)^{3/2} in the first element, so that the linear regime keeps
-    /// Kalker's stiffness).
-    fn behind_share(&self, i: usize, n: usize) -> f64 {
+    /// c(ζ_l + 1)] with c = [`trailing_cap`] (`zone_cap` = c(ζ₀ + 1) = c(2δ)), ζ_l = −1 + ih,
+    /// h = 2/n: 0 at ζ₀ = ζ_l, 1 at the element's leading side, ~(nδ)^{3/2} in the first element
+    /// (so that the linear regime keeps Kalker's stiffness).
+    fn behind_share(&self, i: usize, n: usize, zone_cap: f64) -> f64 {
         let h = 2.0 / n as f64;
         let from = i as f64 * h;
         let at_from = if i == 0 { 0.0 } else { trailing_cap(from) };
         let element = trailing_cap(from + h) - at_from;
         if element > 0.0 {
-            ((trailing_cap(self.two_delta) - at_from) / element).clamp(0.0, 1.0)
+            ((zone_cap - at_from) / element).clamp(0.0, 1.0)
         } else {
             0.0
         }
     }
 
-    /// Element means of FS3's terms over the zone's part of the trailing element `i` of `n`
-    /// (the one holding the zone's trailing end ζ₀ = −1 + 2δ), given the sums of the centre
-    /// terms of the zone's elements ahead of it (choice 5): the integrals from ζ₀ to the
-    /// leading edge, less the midpoint sums ahead. With c(t) = [`trailing_cap`] and R = 1 − δ:
+    /// Element means (over an element of `n`) of FS3's terms over the zone's part of the
+    /// trailing element (the one holding the zone's trailing end ζ₀ = −1 + 2δ), given the sums
+    /// of the centre terms of the zone's elements ahead of it (choice 5) and `zone_cap` =
+    /// c(2δ): the integrals from ζ₀ to the leading edge, less the midpoint sums ahead. With c(t) = [`trailing_cap`] and R = 1 − δ:
     /// ∫ S2 dζ = (π/2)R² and ∫ (S1 − S2) dζ = (π/2)δ(2 − δ) − c(2δ) (no cancellation as δ → 0).
     /// With the share behind ζ₀ carried at the slip zone's traction ([`Self::trailing_traction`])
     /// the element's traction is continuous as ζ₀ crosses its centre and its sides: at its
     /// trailing side it is the zone's exact mean, at its leading side a slip element's.
-    fn trailing_terms(&self, n: usize, ahead: Fs3Terms) -> Fs3Terms {
+    fn trailing_terms(&self, n: usize, ahead: Fs3Terms, zone_cap: f64) -> Fs3Terms {
         let h = 2.0 / n as f64;
         let delta = 0.5 * self.two_delta;
         let r = 1.0 - delta;
         Fs3Terms {
-            diff: (FRAC_PI_2 * delta * (2.0 - delta) - trailing_cap(2.0 * delta)) / h - ahead.diff,
+            diff: (FRAC_PI_2 * delta * (2.0 - delta) - zone_cap) / h - ahead.diff,
             s2: FRAC_PI_2 * r * r / h - ahead.s2,
         }
     }
