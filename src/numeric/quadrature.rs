@@ -18,13 +18,22 @@ const GAUSS_WEIGHTS: [f64; 4] = [
 
 /// 8-point Gauss–Legendre integral of `g` over [lo, hi].
 pub fn gauss_legendre(lo: f64, hi: f64, g: impl Fn(f64) -> f64) -> f64 {
+    gauss_legendre_pair(lo, hi, |x| (g(x), 0.0)).0
+}
+
+/// [`gauss_legendre`] of two integrands at once, `g` returning both at each node (one
+/// evaluation per node where they share their work).
+pub fn gauss_legendre_pair(lo: f64, hi: f64, g: impl Fn(f64) -> (f64, f64)) -> (f64, f64) {
     let mid = 0.5 * (lo + hi);
     let half = 0.5 * (hi - lo);
-    let mut sum = 0.0;
+    let (mut first, mut second) = (0.0, 0.0);
     for (node, weight) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS.iter()) {
-        sum += weight * (g(mid - half * node) + g(mid + half * node));
+        let (a_lo, b_lo) = g(mid - half * node);
+        let (a_hi, b_hi) = g(mid + half * node);
+        first += weight * (a_lo + a_hi);
+        second += weight * (b_lo + b_hi);
     }
-    sum * half
+    (first * half, second * half)
 }
 
 #[cfg(test)]

@@ -79,14 +79,14 @@
 //! lateral one the worst creep-curve error against the exact theory grows from 2.3 to 2.7 % of
 //! μN). Strips are taken as parallel, in the patch's plane, and of equal width (an edge through
 //! another strip's collocation point, v = 0, would make the kernel jump). Cost: n² kernel pairs
-//! per patch (~0.18 M instructions per solve of a patch of 24 strips, docs/performance.md).
+//! per patch (~0.17 M instructions per solve of a patch of 24 strips, docs/performance.md).
 
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
 use crate::numeric::dense::lu_solve;
 use crate::numeric::interp::cubic_lagrange_weights;
-use crate::numeric::quadrature::gauss_legendre;
+use crate::numeric::quadrature::gauss_legendre_pair;
 
 /// Half-width of the table in u = (c_i + κ a_i − c_j)/a_j [-].
 const TABLE_U: f64 = 4.0;
@@ -133,23 +133,27 @@ fn integrands(x: f64, v: f64) -> (f64, f64) {
     (-x / (r * (r + v)), x * v / (r * r * r))
 }
 
+/// Node k of the `nodes`-point midpoint rule in θ for ∫₋₁¹ S(τ) f(τ) dτ = ∫₀^π (1 + cos θ)
+/// f(−cos θ) dθ: (−τ_k = cos θ_k, weight (1 + cos θ_k) π/N), θ_k = (k + ½)π/N.
+fn midpoint_node(k: usize, nodes: usize) -> (f64, f64) {
+    let h = PI / nodes as f64;
+    let theta = (k as f64 + 0.5) * h;
+    let cos_half = (0.5 * theta).cos();
+    // 1 + cos θ = 2 cos²(θ/2): no cancellation near θ = π.
+    (theta.cos(), 2.0 * cos_half * cos_half * h)
+}
+
 /// (P̃, Q) at (u, v > 0) by the midpoint rule with `nodes` nodes in θ, τ = −cos θ: accurate
 /// where the integrands are smooth on the strip (far from τ = u, or v large); the check of the
 /// tabulated [`far_integrals`] and of the graded quadrature.
 #[cfg(test)]
 fn midpoint_integrals(u: f64, v: f64, nodes: usize) -> (f64, f64) {
-    let h = PI / nodes as f64;
-    let (mut p, mut q) = (0.0, 0.0);
-    for k in 0..nodes {
-        let theta = (k as f64 + 0.5) * h;
-        let (cos_half, cos) = ((0.5 * theta).cos(), theta.cos());
-        // 1 + cos θ = 2 cos²(θ/2): no cancellation near θ = π.
-        let weight = 2.0 * cos_half * cos_half;
-        let (a, b) = integrands(u + cos, v);
-        p += weight * a;
-        q += weight * b;
-    }
-    (p * h, q * h)
+    (0..nodes)
+        .map(|k| midpoint_node(k, nodes))
+        .fold((0.0, 0.0), |(p, q), (cos, weight)| {
+            let (a, b) = integrands(u + cos, v);
+            (p + weight * a, q + weight * b)
+        })
 }
 
 /// (P̃, Q) at (u, v > 0) by 8-point Gauss–Legendre on panels in θ (τ = −cos θ) graded
@@ -174,27 +178,19 @@ fn graded_integrals(u: f64, v: f64) -> (f64, f64) {
         let mut inner = 0.0;
         for k in (0..=GRADED_PANELS - 1).rev() {
             let outer = length * GRADING.powi(k);
-            let at = |s: f64| theta_star + direction * s;
-            p += gauss_legendre(inner, outer, |s| g(at(s)).0);
-            q += gauss_legendre(inner, outer, |s| g(at(s)).1);
+            let (dp, dq) = gauss_legendre_pair(inner, outer, |s| g(theta_star + direction * s));
+            p += dp;
+            q += dq;
             inner = outer;
         }
     }
     (p, q)
 }
 
-/// The far rule's nodes: (−τ_k = cos θ_k, weight (1 + cos θ_k) π/N), θ_k = (k + ½)π/N.
+/// The far rule's nodes ([`midpoint_node`] of [`FAR_NODES`]).
 fn far_nodes() -> &'static [(f64, f64); FAR_NODES] {
     static NODES: OnceLock<[(f64, f64); FAR_NODES]> = OnceLock::new();
-    NODES.get_or_init(|| {
-        let h = PI / FAR_NODES as f64;
-        std::array::from_fn(|k| {
-            let theta = (k as f64 + 0.5) * h;
-            let cos_half = (0.5 * theta).cos();
-            // 1 + cos θ = 2 cos²(θ/2): no cancellation near θ = π.
-            (theta.cos(), 2.0 * cos_half * cos_half * h)
-        })
-    })
+    NODES.get_or_init(|| std::array::from_fn(|k| midpoint_node(k, FAR_NODES)))
 }
 
 /// (P̃, Q) where the integrands are smooth on the strip (|u| or v beyond most of the table):
@@ -237,19 +233,31 @@ impl KernelTable {
         }
     }
 
-    /// Bicubic interpolation at (u, v) inside the table's range (v clamped to its first column).
-    fn at(&self, u: f64, v: f64) -> (f64, f64) {
+    /// The node i (the interval [i, i + 1] with its neighbours, kept inside the table) and
+    /// the cubic weights in u.
+    fn u_node(&self, u: f64) -> (usize, [f64; 4]) {
         let x = (u + TABLE_U) * NODES_PER_U;
-        let y = ((v.max(TABLE_V_MIN) / TABLE_V_MIN).ln() * NODES_PER_LN_V).max(0.0);
         let i = (x as usize).clamp(1, self.nodes_u - 3);
+        (i, cubic_lagrange_weights(x - i as f64))
+    }
+
+    /// Bicubic interpolation at (u, v) inside the table's range (v clamped to its first column).
+    #[cfg(test)]
+    fn at(&self, u: f64, v: f64) -> (f64, f64) {
+        let (i, wu) = self.u_node(u);
+        self.at_node(i, &wu, v)
+    }
+
+    /// [`Self::at`] with u's node `i` and weights `wu` ([`Self::u_node`]).
+    fn at_node(&self, i: usize, wu: &[f64; 4], v: f64) -> (f64, f64) {
+        let y = ((v.max(TABLE_V_MIN) / TABLE_V_MIN).ln() * NODES_PER_LN_V).max(0.0);
         let j = (y as usize).clamp(1, self.nodes_v - 3);
-        let wu = cubic_lagrange_weights(x - i as f64);
         let wv = cubic_lagrange_weights(y - j as f64);
         let (mut p, mut q) = (0.0, 0.0);
         for (b, wb) in wv.iter().enumerate() {
             let row = &self.values[(j + b - 1) * self.nodes_u + i - 1..][..4];
             let (mut rp, mut rq) = (0.0, 0.0);
-            for (value, wa) in row.iter().zip(&wu) {
+            for (value, wa) in row.iter().zip(wu) {
                 rp += wa * value[0];
                 rq += wa * value[1];
             }
@@ -266,34 +274,69 @@ fn table() -> &'static KernelTable {
     TABLE.get_or_init(KernelTable::build)
 }
 
-/// (P, Q) at (u, v), odd in v (zero at v = 0).
-fn edge_integrals(u: f64, v: f64) -> (f64, f64) {
+/// Weight of a direct quadrature at `depth` inside a band of `width`: 0 outside, 1 deeper than
+/// a fifth of the width, linear in between.
+fn ramp(depth: f64, width: f64) -> f64 {
+    ((depth / width) / 0.2).clamp(0.0, 1.0)
+}
+
+/// The u-dependent parts of the kernel at u = (c_i + κ a_i − c_j)/a_j, shared by the two edges
+/// of a strip pair ([`edge_integrals`]).
+struct KernelColumn {
+    u: f64,
+    /// H(u).
+    hilbert: f64,
+    /// The table's node and cubic weights at u, if u lies within it.
+    node: Option<(usize, [f64; 4])>,
+    /// The u factors of the direct quadratures' weights: near the strip's ends, and inside
+    /// the table (see [`edge_integrals`]).
+    near_end: f64,
+    inside: f64,
+}
+
+impl KernelColumn {
+    fn new(u: f64) -> Self {
+        let in_table = u.abs() <= TABLE_U;
+        Self {
+            u,
+            hilbert: shape_hilbert(u),
+            node: in_table.then(|| table().u_node(u)),
+            near_end: ramp(HARD_U - (u.abs() - 1.0).abs(), HARD_U),
+            inside: ramp(TABLE_U - u.abs(), TABLE_U),
+        }
+    }
+}
+
+/// (P, Q) at (u of `column`, v), odd in v (zero at v = 0).
+fn edge_integrals(column: &KernelColumn, v: f64) -> (f64, f64) {
+    let u = column.u;
     if v == 0.0 || !(u.is_finite() && v.is_finite()) {
         return (0.0, 0.0);
     }
     let abs_v = v.abs();
-    let (p_tilde, q) = if u.abs() <= TABLE_U && abs_v <= TABLE_V_MAX {
-        // Weights of the direct quadratures: 1 deep in a band near the strip's ends or beyond
-        // the table, 0 elsewhere, linear over the outer fifth of the band or of the table.
-        let ramp = |depth: f64, width: f64| ((depth / width) / 0.2).clamp(0.0, 1.0);
-        let graded = ramp(HARD_U - (u.abs() - 1.0).abs(), HARD_U) * ramp(HARD_V - abs_v, HARD_V);
-        let far = 1.0 - ramp(TABLE_U - u.abs(), TABLE_U) * ramp(TABLE_V_MAX - abs_v, TABLE_V_MAX);
-        let mut value = table().at(u, abs_v);
-        for (weight, direct) in [
-            (graded, graded_integrals as fn(f64, f64) -> (f64, f64)),
-            (far, far_integrals),
-        ] {
-            if weight > 0.0 {
-                let exact = direct(u, abs_v.max(TABLE_V_MIN));
-                value.0 += weight * (exact.0 - value.0);
-                value.1 += weight * (exact.1 - value.1);
+    let (p_tilde, q) = match column.node {
+        Some((i, wu)) if abs_v <= TABLE_V_MAX => {
+            // Weights of the direct quadratures: 1 deep in a band near the strip's ends or
+            // beyond the table, 0 elsewhere, linear over the outer fifth of the band or of the
+            // table.
+            let graded = column.near_end * ramp(HARD_V - abs_v, HARD_V);
+            let far = 1.0 - column.inside * ramp(TABLE_V_MAX - abs_v, TABLE_V_MAX);
+            let mut value = table().at_node(i, &wu, abs_v);
+            for (weight, direct) in [
+                (graded, graded_integrals as fn(f64, f64) -> (f64, f64)),
+                (far, far_integrals),
+            ] {
+                if weight > 0.0 {
+                    let exact = direct(u, abs_v.max(TABLE_V_MIN));
+                    value.0 += weight * (exact.0 - value.0);
+                    value.1 += weight * (exact.1 - value.1);
+                }
             }
+            value
         }
-        value
-    } else {
-        far_integrals(u, abs_v)
+        _ => far_integrals(u, abs_v),
     };
-    let p = shape_hilbert(u) + p_tilde;
+    let p = column.hilbert + p_tilde;
     let sign = v.signum();
     (sign * p, sign * q)
 }
@@ -402,10 +445,11 @@ impl StripCoefficients {
                 let source = &strips[j];
                 let a = source.half_length;
                 let u = (field.x_c + COLLOCATION * field.half_length - source.x_c) / a;
+                let column = KernelColumn::new(u);
                 let offset = field.s - source.s;
                 let half = 0.5 * source.width;
-                let (p_hi, q_hi) = edge_integrals(u, (offset + half) / a);
-                let (p_lo, q_lo) = edge_integrals(u, (offset - half) / a);
+                let (p_hi, q_hi) = edge_integrals(&column, (offset + half) / a);
+                let (p_lo, q_lo) = edge_integrals(&column, (offset - half) / a);
                 let (p, q) = (p_hi - p_lo, q_hi - q_lo);
                 self.matrix_x[row * n + col] = -(1.0 - nu) * p - nu * q;
                 self.matrix_y[row * n + col] = -p + nu * q;
@@ -487,10 +531,10 @@ mod tests {
     fn p_is_the_strip_kernel_near_and_its_direct_integral_far() {
         // v → ∞ (the 2-D strip): P → H(u) = π − π(u + 1/2)/(2v²) + …; v → 0: P → 0 (the odd
         // kernel's principal value).
-        let (p, _) = edge_integrals(0.3, 1e3);
+        let (p, _) = edge_integrals(&KernelColumn::new(0.3), 1e3);
         assert!((p - PI).abs() < 1e-5, "{p}");
         // (At the table's smallest v, 1e−3: P = 0.0137, about v ln(1/v) times the slope.)
-        let (p, _) = edge_integrals(0.3, 1e-3);
+        let (p, _) = edge_integrals(&KernelColumn::new(0.3), 1e-3);
         assert!(p.abs() < 0.02 && p > 0.0, "{p}");
         // Off the strip (|u| > 1) P has no principal value: the midpoint rule on S v/(X r)
         // directly, against H + P̃ (table and far rule), also for negative v (odd).
@@ -510,7 +554,7 @@ mod tests {
                     (1.0 + t.cos()) * v / (x * x.hypot(v)) * h
                 })
                 .sum();
-            let (p, _) = edge_integrals(u, v);
+            let (p, _) = edge_integrals(&KernelColumn::new(u), v);
             assert!(
                 (p - direct).abs() < 1e-3 * direct.abs().max(0.01),
                 "{u} {v}: {p} {direct}"
