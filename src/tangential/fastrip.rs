@@ -83,10 +83,10 @@
 //!    mean, at its leading side the slip element's traction. (With the part behind the zone
 //!    along FS3's direction instead, the element turned to FASTSIM's direction as the zone's
 //!    end left it, a step of ~1e−5 of the load in the wheel's creep forces that stopped the
-//!    load balance's creep iteration short of its tolerance.) Centre sampling alone misses the Carter-type
-//!    peak at the zone's trailing end (in the linear regime ∝ (a_y + x)^{−1/2}): the linear
-//!    limit converged only like n^{−1/2}, −6.7 % at 40 elements per strip, −12 % at the
-//!    wheel–rail patches' 24.
+//!    load balance's creep iteration short of its tolerance.) Centre sampling alone misses
+//!    the Carter-type peak at the zone's trailing end (in the linear regime ∝ (a_y + x)^{−1/2}):
+//!    the linear limit converged only like n^{−1/2}, −6.7 % at 40 elements per strip, −12 % at
+//!    the wheel–rail patches' 24.
 //!    CONTACT samples at the centres; its printouts are reproduced with that sampling
 //!    (`ZoneSampling::Centres`, the test `contact_oracle_on_contacts_grid`).
 //!    The Hertzian driver [`solve_ellipse`] places ny strips at the element centres of
@@ -790,8 +790,9 @@ impl AdhesionZone {
     /// Element means (over an element of `n`) of FS3's terms over the zone's part of the
     /// trailing element (the one holding the zone's trailing end ζ₀ = −1 + 2δ), given the sums
     /// of the centre terms of the zone's elements ahead of it (choice 5) and `zone_cap` =
-    /// c(2δ): the integrals from ζ₀ to the leading edge, less the midpoint sums ahead. With c(t) = [`trailing_cap`] and R = 1 − δ:
-    /// ∫ S2 dζ = (π/2)R² and ∫ (S1 − S2) dζ = (π/2)δ(2 − δ) − c(2δ) (no cancellation as δ → 0).
+    /// c(2δ): the integrals from ζ₀ to the leading edge, less the midpoint sums ahead. With
+    /// c(t) = [`trailing_cap`] and R = 1 − δ: ∫ S2 dζ = (π/2)R² and
+    /// ∫ (S1 − S2) dζ = (π/2)δ(2 − δ) − c(2δ) (no cancellation as δ → 0).
     /// With the share behind ζ₀ carried at the slip zone's traction ([`Self::trailing_traction`])
     /// the element's traction is continuous as ζ₀ crosses its centre and its sides: at its
     /// trailing side it is the zone's exact mean, at its leading side a slip element's.
@@ -1062,12 +1063,8 @@ fn solve_elements(
             let mut fs3 = zone.traction(terms, root);
             if trailing == Some(i) {
                 if fs3.is_some() {
-                    // Its share behind the zone slips (with that share of the slip's power).
-                    let mut own = StripAccumulator::default();
-                    let slip = slip_zone.traction(&pass, pass_slip, xr, shape, &mut own);
-                    let (traction, behind) = zone.trailing_traction(i, n, marched, root, slip);
-                    acc.add_power(behind * own.power);
-                    fs3 = Some(traction);
+                    let slip = (&pass, pass_slip, xr, shape);
+                    fs3 = Some(slip_zone.trailing(zone, slip, (i, n), marched, root, &mut acc));
                 }
             } else {
                 marched.diff += terms.diff;
@@ -1087,14 +1084,10 @@ fn solve_elements(
         let xr = x_l * zeta;
         let pass_slip = pass.advance(xr, shape);
         let traction = match (trailing == Some(i), &adhesion_zone) {
+            // Its centre lies behind the zone: it slips, with the zone's part of it.
             (true, Some(zone)) => {
-                // Its centre lies behind the zone: it slips, with the zone's part of it (and
-                // the share behind the zone of the slip's power, choice 6).
-                let mut own = StripAccumulator::default();
-                let slip = slip_zone.traction(&pass, pass_slip, xr, shape, &mut own);
-                let (traction, behind) = zone.trailing_traction(i, n, marched, root, slip);
-                acc.add_power(behind * own.power);
-                traction
+                let slip = (&pass, pass_slip, xr, shape);
+                slip_zone.trailing(zone, slip, (i, n), marched, root, &mut acc)
             }
             _ => slip_zone.traction(&pass, pass_slip, xr, shape, &mut acc),
         };
@@ -1169,6 +1162,29 @@ struct SlipZone {
 }
 
 impl SlipZone {
+    /// Traction (q_x, q_y) [Pa] of the adhesion zone's trailing element `i` of `n`
+    /// ([`AdhesionZone::trailing_traction`], `ahead` the zone's centre terms ahead of it, √(1 −
+    /// ζ²) = `root` at its centre): its slip-zone traction, from `pass` as in [`Self::traction`]
+    /// (`slip` = pass, its slip, x − x_c, bound shape), carries the share of the element behind
+    /// the zone, and that share of its frictional power goes to `acc` (choice 6).
+    #[inline(always)]
+    fn trailing(
+        &self,
+        zone: &AdhesionZone,
+        slip: (&DirectionPass, Option<(f64, f64)>, f64, f64),
+        (i, n): (usize, usize),
+        ahead: Fs3Terms,
+        root: f64,
+        acc: &mut StripAccumulator,
+    ) -> (f64, f64) {
+        let (pass, pass_slip, xr, shape) = slip;
+        let mut own = StripAccumulator::default();
+        let slip_traction = self.traction(pass, pass_slip, xr, shape, &mut own);
+        let (traction, behind) = zone.trailing_traction(i, n, ahead, root, slip_traction);
+        acc.add_power(behind * own.power);
+        traction
+    }
+
     /// Traction (q_x, q_y) [Pa] of a slipping element at x − x_c = `xr` with bound shape
     /// `shape`, after `pass` advanced over it (`pass_slip`: its adhesion trial if it slipped);
     /// its frictional power density |q| |S| [N/m] goes to `acc`.

@@ -191,7 +191,8 @@ pub struct StripFastsim {
     midpoint_ratio: f64,
     /// FaStrip's element centres and semi-ellipse on a strip of `nx` elements.
     fastrip_grid: Arc<StripGrid>,
-    /// The strip-wise creep coefficients' solver and its strips (sized on first use).
+    /// The strip-wise creep coefficients' solver and its strips (sized by
+    /// [`StripFastsim::reserve_coupled`]).
     coupling: StripCoefficients,
     coupling_strips: Vec<CouplingStrip>,
     /// FaStrip's per-strip factors (C11_j/C11, C22_j/C22) on its starred creepages (1 without
@@ -339,9 +340,9 @@ impl StripFastsim {
     /// (the strip's spin also in the lever term). With `coupled`, strip j's starred ξ and φ
     /// are scaled by C11_j/C11 and its η by C22_j/C22, its own coefficients from the strips
     /// coupled through the half-space (`crate::tangential::strip_coefficients`; the ratios
-    /// clamped to [0.25, 4], the ellipse's where that system cannot be solved). Same outputs and buffers as
-    /// [`StripFastsim::solve`]; no allocation (the coupled coefficients' buffers are sized on
-    /// first use).
+    /// clamped to [0.25, 4], the ellipse's where that system cannot be solved). Same outputs
+    /// and buffers as [`StripFastsim::solve`]; no allocation (with `coupled`, after
+    /// [`StripFastsim::reserve_coupled`]).
     pub fn solve_fastrip(
         &mut self,
         strips: &[TangentialStrip],
@@ -364,9 +365,10 @@ impl StripFastsim {
         // A shared handle on the grid (no allocation), so that the solve can borrow `self`.
         let grid = Arc::clone(&self.fastrip_grid);
         let n = strips.len().min(MAX_STRIPS);
-        self.gains[..n].fill((1.0, 1.0));
         if coupled {
             self.coupled_gains(&strips[..n], nu, coefficients);
+        } else {
+            self.gains[..n].fill((1.0, 1.0));
         }
         // `run` visits the strips in order: the gains go by a running index.
         let gains = std::mem::take(&mut self.gains);
@@ -419,8 +421,8 @@ impl StripFastsim {
     }
 
     /// Fills `gains` with (C11_j/C11, C22_j/C22) of the strips coupled through the half-space
-    /// (Poisson ratio `nu`) against the ellipse's `coefficients`; leaves them at 1 if the
-    /// coupled system fails or a ratio is not a positive finite number.
+    /// (Poisson ratio `nu`) against the ellipse's `coefficients`, clamped to [[`GAIN_MIN`],
+    /// [`GAIN_MAX`]]; 1 where a ratio is NaN, and for every strip if the coupled system fails.
     fn coupled_gains(
         &mut self,
         strips: &[TangentialStrip],
