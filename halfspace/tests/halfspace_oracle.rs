@@ -87,15 +87,7 @@ fn exact_normal(
     creepage: Creepage,
     element: f64,
 ) -> ExactNormal {
-    let input = WheelsetInput {
-        y,
-        yaw,
-        roll: 0.0,
-        vertical: Vertical::Loads { left: Q, right: Q },
-        creepages: Creepages::Prescribed { creepage, vx: 2.0 },
-    };
-    let mut out = WheelsetResult::default();
-    ws.solve(&input, &mut out).expect("solve");
+    let out = solve_pose(ws, y, yaw, creepage);
     let normal_force: f64 = out.right.shown_patches().map(|p| p.fn_).sum();
 
     let dominant = ws
@@ -443,13 +435,9 @@ fn coupled_creep_curves_against_the_oracle(
     summary
 }
 
-/// The right wheel's first patch of `ws` at lateral shift `y` [m] with `creepage` prescribed.
-fn model_patch(
-    ws: &mut Wheelset,
-    y: f64,
-    yaw: f64,
-    creepage: Creepage,
-) -> railcontact::wheelset::PatchResult {
+/// The solution of `ws` at lateral shift `y` [m] and yaw `yaw` [rad], 78.5 kN per wheel, with
+/// `creepage` prescribed.
+fn solve_pose(ws: &mut Wheelset, y: f64, yaw: f64, creepage: Creepage) -> WheelsetResult {
     let input = WheelsetInput {
         y,
         yaw,
@@ -459,7 +447,17 @@ fn model_patch(
     };
     let mut out = WheelsetResult::default();
     ws.solve(&input, &mut out).expect("solve");
-    out.right.patches[0]
+    out
+}
+
+/// The right wheel's first patch of [`solve_pose`].
+fn model_patch(
+    ws: &mut Wheelset,
+    y: f64,
+    yaw: f64,
+    creepage: Creepage,
+) -> railcontact::wheelset::PatchResult {
+    solve_pose(ws, y, yaw, creepage).right.patches[0]
 }
 
 #[test]
