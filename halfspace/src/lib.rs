@@ -94,7 +94,9 @@ mod solver;
 
 pub use grid::Grid;
 pub use influence::influence_coefficient;
-pub use rolling::{solve_rolling, tangential_influence, Rolling, RollingSolution};
+pub use rolling::{
+    solve_rolling, solve_rolling_with_slip, tangential_influence, Rolling, RollingSolution,
+};
 pub use solver::{solve, surface_displacement, Solution, SolveError, Solver, Target};
 
 #[cfg(test)]

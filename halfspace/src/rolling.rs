@@ -128,6 +128,29 @@ pub fn solve_rolling(
     rolling: &Rolling,
     tol: f64,
 ) -> Result<RollingSolution, SolveError> {
+    require_finite("xi", rolling.xi)?;
+    require_finite("eta", rolling.eta)?;
+    require_finite("phi", rolling.phi)?;
+    solve_rolling_with_slip(
+        grid,
+        pressure,
+        |x, y| [rolling.xi - rolling.phi * y, rolling.eta + rolling.phi * x],
+        rolling,
+        tol,
+    )
+}
+
+/// [`solve_rolling`] with the rigid slip w(x, y) [-] of each element given by `rigid_slip` at its
+/// centre (the creepages of `rolling` are not used; its material and friction are): the exact
+/// theory on a surface whose rigid slip is not that of one plane (Kalker's w = (ξ − φy, η + φx)),
+/// e.g. each element's own rolling radius, contact angle and spin on a curved wheel–rail patch.
+pub fn solve_rolling_with_slip(
+    grid: &Grid,
+    pressure: &[f64],
+    rigid_slip: impl Fn(f64, f64) -> [f64; 2],
+    rolling: &Rolling,
+    tol: f64,
+) -> Result<RollingSolution, SolveError> {
     grid.validate()?;
     if pressure.len() != grid.len() {
         return Err(InputError::new(
@@ -140,9 +163,6 @@ pub fn solve_rolling(
     for &p in pressure {
         require_non_negative("pressure", p)?;
     }
-    require_finite("xi", rolling.xi)?;
-    require_finite("eta", rolling.eta)?;
-    require_finite("phi", rolling.phi)?;
     require_positive("shear_modulus", rolling.shear_modulus)?;
     require_non_negative("poisson_ratio", rolling.poisson_ratio)?;
     require_positive("friction", rolling.friction)?;
@@ -159,10 +179,13 @@ pub fn solve_rolling(
     let rigid: Vec<[f64; 2]> = loaded
         .iter()
         .map(|&k| {
-            let (x, y) = (grid.x(k % nx), grid.y(k / nx));
-            [rolling.xi - rolling.phi * y, rolling.eta + rolling.phi * x]
+            let w = rigid_slip(grid.x(k % nx), grid.y(k / nx));
+            for (name, v) in [("rigid slip x", w[0]), ("rigid slip y", w[1])] {
+                require_finite(name, v)?;
+            }
+            Ok(w)
         })
-        .collect();
+        .collect::<Result<_, InputError>>()?;
     let bound: Vec<f64> = loaded.iter().map(|&k| mu * pressure[k]).collect();
     // Influence coefficients per offset field − source: columns −(nx − 1) … nx (one beyond, for
     // the leading neighbour), rows −(ny − 1) … ny − 1.

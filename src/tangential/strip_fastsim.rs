@@ -370,6 +370,22 @@ impl StripFastsim {
         } else {
             self.gains[..n].fill((1.0, 1.0));
         }
+        // FaStrip's strip theory takes the longitudinal rigid slip as ξ* − φ* y/a with the
+        // strip's own φ; the lever term of the module header's equations is the reference
+        // spin's. ξ is shifted so that ξ* − φ_j* y/a = ξ_j* − φ_ref* y/a (the starred factors
+        // are linear): on a planar patch (φ_j = φ_ref) nothing changes. The slip zone's FASTSIM
+        // pass then sees the lever through 9π²/(128(1 − ν)) L3/L1 ≈ 0.96 of its own L3 term
+        // (both from the ellipse's coefficients), a second-order difference in its direction.
+        let lever_factor = patch_scales.phi_star_per_phi / (a_e * patch_scales.xi_star_per_xi);
+        let k_lever = |strip: &TangentialStrip| {
+            let k = strip.creepage;
+            let shift = (k.phi - strip.reference_spin) * strip.lever * lever_factor;
+            if shift.is_finite() {
+                k.xi + shift
+            } else {
+                k.xi
+            }
+        };
         // `run` visits the strips in order: the gains go by a running index.
         let gains = std::mem::take(&mut self.gains);
         let mut next = gains.iter();
@@ -378,7 +394,10 @@ impl StripFastsim {
             if !(strip.half_length > 0.0 && strip.pmax > 0.0 && strip.width > 0.0) {
                 return None;
             }
-            let k = strip.creepage;
+            let k = Creepage {
+                xi: k_lever(strip),
+                ..strip.creepage
+            };
             let scales = patch_scales.with_creepage(k.xi * gain_x, k.eta * gain_y, k.phi * gain_x);
             let strip_input = FastripStrip {
                 y: strip.lever,

@@ -287,7 +287,7 @@ pub fn balance<E>(
 pub(super) const MIN_NORMAL_SHARE: f64 = 0.05;
 
 /// Passes of the strip models' load balance that update the creep forces' vertical component.
-pub(super) const CREEP_PASSES: usize = 12;
+pub(super) const CREEP_PASSES: usize = 20;
 
 /// Relative tolerance of that update on the wheel load.
 pub(super) const CREEP_TOLERANCE: f64 = 1e-7;
@@ -532,7 +532,11 @@ pub(super) fn check_balance(
 /// wrong way. So the iterates on either side of the root are kept (h > 0 below it, h < 0 above
 /// it): a step that would leave the bracket bisects it, closing on the root or on the jump, and
 /// while only one side is known a step back behind it is replaced by the plain step from that
-/// side's end (towards the root, as the contraction guarantees).
+/// side's end (towards the root, as the contraction guarantees). Where the map is not
+/// contracting — a two-lobe patch whose normal direction turns with the load, on which g has
+/// slopes near or above 1 over a few newtons — plain steps crawl: while a step in the plain
+/// direction does not halve h, the next one is at least twice as long, until the other side
+/// is found.
 #[derive(Debug, Default)]
 pub(super) struct CreepFixedPoint {
     previous: Option<(f64, f64)>,
@@ -561,13 +565,26 @@ impl CreepFixedPoint {
             }
             _ => g,
         };
+        // A step in the plain direction (that of h) that did not halve h: crawling.
+        let crawl = self.previous.and_then(|(c0, h0)| {
+            let step = c - c0;
+            (h * h0 > 0.0 && step * h > 0.0 && h.abs() > 0.5 * h0.abs()).then_some(step)
+        });
         self.previous = Some((c, h));
+        let one_sided = |end: f64, h_end: f64, behind: bool| {
+            let step = if behind { end + h_end } else { next };
+            match crawl {
+                Some(last) if h_end > 0.0 => step.max(c + 2.0 * last),
+                Some(last) => step.min(c + 2.0 * last),
+                None => step,
+            }
+        };
         match (self.below, self.above) {
             (Some((lo, _)), Some((hi, _))) if lo < hi && !(next > lo && next < hi) => {
                 0.5 * (lo + hi)
             }
-            (Some((lo, h_lo)), None) if next <= lo => lo + h_lo,
-            (None, Some((hi, h_hi))) if next >= hi => hi + h_hi,
+            (Some((lo, h_lo)), None) => one_sided(lo, h_lo, next <= lo),
+            (None, Some((hi, h_hi))) => one_sided(hi, h_hi, next >= hi),
             _ => next,
         }
     }

@@ -114,72 +114,39 @@ pub(super) fn tangential_in_axes(
     Vector3::new(fx, fy * e_y.y, fy * e_y.z)
 }
 
-/// The kinematics of a non-planar patch (docs/theory.md §5.8, §8.1): the rigid-body motion the
-/// strips' creepages come from — the wheelset's own, or with prescribed creepages (which hold at
-/// the reference point) pure rolling at the nominal wheel radius — and its creepages at the patch's
-/// reference point.
+/// The kinematics of a non-planar patch with kinematic creepages (docs/theory.md §5.8, §8.1):
+/// the wheelset's rigid-body motion, from which every strip takes its own creepages.
 pub(super) struct NonPlanar {
     kinematics: WheelsetInput,
     sigma: f64,
-    at_reference: Creepage,
     /// (sin ψ, cos ψ) of the yaw.
     yaw_trig: (f64, f64),
 }
 
 impl NonPlanar {
-    pub(super) fn new(
-        input: &WheelsetInput,
-        sigma: f64,
-        wheel_radius: f64,
-        reference: &ContactPoint,
-    ) -> Self {
-        let kinematics = match input.creepages {
-            Creepages::Kinematic { .. } => *input,
-            Creepages::Prescribed { vx, .. } => {
-                let v = vx.abs().max(V_MIN);
-                WheelsetInput {
-                    creepages: Creepages::Kinematic {
-                        vx: v,
-                        vy: 0.0,
-                        yaw_rate: 0.0,
-                        omega: v / wheel_radius,
-                    },
-                    ..*input
-                }
-            }
-        };
-        let (at_reference, _) =
-            creepages_at(&kinematics, sigma, reference, reference.contact_angle);
-        Self {
-            kinematics,
-            sigma,
-            at_reference,
-            yaw_trig: input.yaw.sin_cos(),
+    /// `None` with prescribed creepages: they hold on every strip as given (in each strip's own
+    /// axes), so that no creepage prescribed means no creep force.
+    pub(super) fn new(input: &WheelsetInput, sigma: f64) -> Option<Self> {
+        match input.creepages {
+            Creepages::Prescribed { .. } => None,
+            Creepages::Kinematic { .. } => Some(Self {
+                kinematics: *input,
+                sigma,
+                yaw_trig: input.yaw.sin_cos(),
+            }),
         }
     }
 
-    /// The non-planar part of the creepages at the strip's point on the wheelset `point`
-    /// ((longitudinal, lateral, rolling radius) [m]; lever `lever` along e_y from the reference point; `angle_trig` its contact angle's (sin, cos)):
-    /// the strip's creepages in its own axes minus what a flat patch would give there,
-    /// (ξ_ref − φ_ref·lever, η_ref, φ_ref).
-    pub(super) fn increment(
-        &self,
-        point: Vector3<f64>,
-        lever: f64,
-        angle_trig: (f64, f64),
-    ) -> Creepage {
-        let (here, _) = creepages_with(
+    /// The creepages of the strip at `point` on the wheelset ((longitudinal, lateral, rolling
+    /// radius) [m]) in its own contact axes (`angle_trig`: its contact angle's (sin, cos)).
+    pub(super) fn creepage(&self, point: Vector3<f64>, angle_trig: (f64, f64)) -> Creepage {
+        creepages_with(
             &self.kinematics,
             self.sigma,
             point,
             angle_trig,
             self.yaw_trig,
-        );
-        let there = &self.at_reference;
-        Creepage {
-            xi: here.xi - (there.xi - there.phi * lever),
-            eta: here.eta - there.eta,
-            phi: here.phi - there.phi,
-        }
+        )
+        .0
     }
 }

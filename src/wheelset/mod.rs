@@ -555,6 +555,7 @@ impl Wheelset {
                     b_smoothing: self.settings.b_smoothing,
                     kp_shape_correction: self.settings.kp_shape_correction,
                 },
+                planar: self.settings.planar_patch,
             },
             table: &self.table,
             settings: &self.settings,

@@ -25,14 +25,16 @@
 
 use nalgebra::Vector3;
 
-use super::balance::{creep_passes, creep_upward, CreepPass};
-use super::kinematics::{creepages_at, point_position, tangential_in_axes, NonPlanar};
+use super::balance::{creep_passes, CreepPass};
+use super::kinematics::{
+    contact_axes, creepages_at, planar_tangential, point_position, tangential_in_axes, NonPlanar,
+};
 use super::reuse::{PatchTangential, Tangential, TangentialMemo};
 use super::{store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput};
 use crate::error::InputError;
 use crate::geometry::groups::{group_bounds, groups_at, MAX_GROUPS};
 use crate::geometry::search::{ContactPlane, ContactPoint, StripPoints, WheelOnRail};
-use crate::geometry::strips::StripGeometry;
+use crate::geometry::strips::{PerStrip, StripGeometry};
 use crate::normal::shape::HertzShapeTable;
 use crate::normal::strips::{PatchSummary, StripSolution};
 use crate::normal::{NormalModel, NormalParams, StripModel};
@@ -53,6 +55,9 @@ pub struct StripPatch {
     /// `geom.f` are measured from it (their minimum is zero), and the patch's approach is the
     /// plane's approach less it — the approach of its deepest strip.
     pub gap_offset: f64,
+    /// Per strip, the factor of d_j^{5/2} in its weight for the reference point
+    /// ([`StripPatch::interpenetration_centre`]) [m^{-1/2}].
+    reference_weight: PerStrip<f64>,
     model: Box<dyn StripModel + Send>,
 }
 
@@ -65,6 +70,7 @@ impl StripPatch {
             sol: StripSolution::default(),
             weight: 0.0,
             gap_offset: 0.0,
+            reference_weight: PerStrip::default(),
             model: model.strip_model()?,
         })
     }
@@ -104,6 +110,19 @@ impl StripPatch {
                 *f -= self.gap_offset;
             }
         }
+        // The interpenetration's weight per strip is ∫ over its lateral extent dy (track) of
+        // d_v^{5/2}/√A: dy = ds cos γ_j / cos(γ_j − γ_p) along the rail, γ_p the plane's angle.
+        let gamma_p = self.plane.gamma_rail;
+        for j in 0..n {
+            let angle = self.points.angle[j];
+            let lateral_per_s = angle.cos() / (angle - gamma_p).cos();
+            let a = self.geom.curv_a[j];
+            self.reference_weight[j] = if a > 0.0 && lateral_per_s > 0.0 {
+                lateral_per_s / a.sqrt()
+            } else {
+                0.0
+            };
+        }
         self.model.prepare(&self.geom, &settings.params, table);
     }
 
@@ -123,13 +142,87 @@ impl StripPatch {
         PatchSummary::of(&self.geom, &self.sol)
     }
 
-    /// Contact angle of the patch: the inclination of its contact plane in the track frame
-    /// (positive rising towards the flange) [rad]. The planar patch's normal force acts along
-    /// the plane's normal; the plane is fixed for the step, so the vertical force N cos γ
-    /// increases with the lowering as N does (the rail's angle at the force centroid, which
-    /// moves with the lowering, would not keep it monotone across a patch of two lobes).
-    pub fn contact_angle(&self) -> f64 {
-        self.plane.gamma_rail
+    /// The weighted centre of the patch's interpenetration with the wheel lowered by `dz` [m]
+    /// and the weighted mean of the rail's inclination over it: (s [m], γ [rad], track frame),
+    /// or `None` where no strip overlaps. The vertical interpenetration d(x, y) = d_y − A_y x²
+    /// at the lateral y weighs it by ∫ d² dx = (16/15) d_y^{5/2}/√A_y — the contact reference
+    /// of Kalker's planar theory as CONTACT places it (docs/theory.md §7.9) — summed over the
+    /// strips (d_j = dz less the strip's vertical gap, over its lateral extent,
+    /// `reference_weight`). Continuous in dz and in the strips' gaps (a strip enters with zero
+    /// weight).
+    pub fn interpenetration_centre(&self, dz: f64) -> Option<(f64, f64)> {
+        let g = &self.geom;
+        let (mut total, mut s_sum, mut angle_sum) = (0.0, 0.0, 0.0);
+        for j in 0..g.n {
+            let depth = dz - self.points.vertical_gap[j];
+            if depth.is_nan() || depth <= 0.0 {
+                continue;
+            }
+            let weight = depth * depth * depth.sqrt() * self.reference_weight[j];
+            total += weight;
+            s_sum += weight * g.s[j];
+            angle_sum += weight * self.points.angle[j];
+        }
+        (total > 0.0 && total.is_finite()).then(|| (s_sum / total, angle_sum / total))
+    }
+
+    /// Σ N_j sin γ_j and Σ N_j cos γ_j of the last solution: the lateral and vertical parts of
+    /// the strips' normal forces, each along its own surface normal (track frame, before the
+    /// side's sign) [N].
+    pub fn normal_resultant(&self) -> (f64, f64) {
+        let (mut lateral, mut vertical) = (0.0, 0.0);
+        for j in 0..self.geom.n.min(self.sol.n) {
+            let n = self.sol.force[j];
+            if n > 0.0 {
+                lateral += n * self.points.sin_angle[j];
+                vertical += n * self.points.cos_angle[j];
+            }
+        }
+        (lateral, vertical)
+    }
+
+    /// Where and along which normal the last solution's normal force acts, with the wheel
+    /// lowered by `dz` [m] (docs/conventions.md, "Reference point"): the reference point at the
+    /// force centroid of the strips (where the load is); on a planar patch the force Σ N_j along
+    /// the normal of the plane of Kalker's planar theory, inclined by the interpenetration's
+    /// weighted mean inclination ([`StripPatch::interpenetration_centre`]); on a non-planar one
+    /// each strip's N_j along its own normal, whose resultant gives the angle and the force.
+    pub fn frame(&self, dz: f64, planar: bool) -> PatchFrame {
+        let n = self.geom.n.min(self.sol.n);
+        let (mut normal_force, mut moment) = (0.0, 0.0);
+        for j in 0..n {
+            let force = self.sol.force[j].max(0.0);
+            normal_force += force;
+            moment += force * self.geom.s[j];
+        }
+        let s = if normal_force > 0.0 {
+            moment / normal_force
+        } else {
+            0.0
+        };
+        let plane_angle = || {
+            self.interpenetration_centre(dz)
+                .map_or(self.plane.gamma_rail, |(_, angle)| angle)
+        };
+        if planar {
+            return PatchFrame {
+                s,
+                angle: plane_angle(),
+                normal_force,
+                resultant: normal_force,
+            };
+        }
+        let (lateral, vertical) = self.normal_resultant();
+        PatchFrame {
+            s,
+            angle: if normal_force > 0.0 {
+                lateral.atan2(vertical)
+            } else {
+                plane_angle()
+            },
+            normal_force,
+            resultant: lateral.hypot(vertical),
+        }
     }
 
     /// Linear interpolation of a per-strip quantity at in-plane coordinate `s`.
@@ -154,6 +247,30 @@ impl StripPatch {
     }
 }
 
+/// Where a strip patch's normal force acts ([`StripPatch::frame`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchFrame {
+    /// In-plane coordinate of the reference point [m].
+    pub s: f64,
+    /// Contact angle in the track frame, positive rising towards the flange [rad].
+    pub angle: f64,
+    /// Normal force Σ N_j: the patch's normal load, reported along the normal of `angle` [N]
+    /// (unweighted).
+    pub normal_force: f64,
+    /// |Σ N_j n_j|, the resultant of the strips' normal forces along their own normals n_j
+    /// (the normal force of a planar patch): less than `normal_force` by a factor
+    /// ≈ 1 − var(γ_j)/2 on a non-planar one [N].
+    pub resultant: f64,
+}
+
+impl PatchFrame {
+    /// The vertical part of the normal forces' resultant [N] (Σ N_j cos γ_j on a non-planar
+    /// patch): with the creep forces' vertical component, the wheel's vertical force.
+    pub fn vertical(&self) -> f64 {
+        self.resultant * self.angle.cos()
+    }
+}
+
 /// The strip patches of one wheel.
 pub struct StripSide {
     patches: Vec<StripPatch>,
@@ -169,6 +286,9 @@ pub struct StripSettings {
     pub model: NormalModel,
     pub strips: usize,
     pub params: NormalParams,
+    /// Planar patches (one normal per patch) or each strip's normal force along its own
+    /// normal ([`StripPatch::frame`]).
+    pub planar: bool,
 }
 
 /// Iteration limit of the load balance.
@@ -203,14 +323,20 @@ impl StripSide {
         &self.patches[..self.count]
     }
 
-    /// Vertical force of the rail on the wheel lowered by `dz` (upwards positive) [N].
-    fn vertical_force(&mut self, dz: f64, params: &NormalParams, table: &HertzShapeTable) -> f64 {
+    /// Vertical force of the rail on the wheel lowered by `dz` (upwards positive) [N]: each
+    /// patch's normal force along its [`StripPatch::frame`] (`planar` or not).
+    fn vertical_force(
+        &mut self,
+        dz: f64,
+        settings: &StripSettings,
+        table: &HertzShapeTable,
+    ) -> f64 {
         self.patches[..self.count]
             .iter_mut()
             .map(|p| {
-                let n = p.solve(dz, params, table);
+                let n = p.solve(dz, &settings.params, table);
                 if n > 0.0 {
-                    p.weight * n * p.contact_angle().cos()
+                    p.weight * p.frame(dz, settings.planar).vertical()
                 } else {
                     0.0
                 }
@@ -296,10 +422,10 @@ impl StripSide {
                     slope: (trial_approach > 0.0).then(|| 1.5 * q / trial_approach),
                     ..Guess::default()
                 };
-                self.iterate(q, touch, trial, &settings.params, table)
+                self.iterate(q, touch, trial, settings, table)
             }
             None => {
-                self.vertical_force(dz_hint, &settings.params, table);
+                self.vertical_force(dz_hint, settings, table);
                 dz_hint
             }
         }
@@ -323,7 +449,7 @@ impl StripSide {
                 ..Guess::default()
             },
         };
-        self.iterate(target, touch, guess, &settings.params, table)
+        self.iterate(target, touch, guess, settings, table)
     }
 
     /// The lowering at which the vertical force equals `q` > 0 ([`balance`] from `guess`, its
@@ -333,7 +459,7 @@ impl StripSide {
         q: f64,
         touch: f64,
         guess: Guess,
-        params: &NormalParams,
+        settings: &StripSettings,
         table: &HertzShapeTable,
     ) -> f64 {
         let guess = Guess {
@@ -347,10 +473,10 @@ impl StripSide {
             LOAD_TOLERANCE,
             LOAD_ITERATIONS,
             ForceLaw::General,
-            |dz| Ok::<_, std::convert::Infallible>(self.vertical_force(dz, params, table) - q),
+            |dz| Ok::<_, std::convert::Infallible>(self.vertical_force(dz, settings, table) - q),
         );
         if !balanced.evaluated {
-            self.vertical_force(balanced.lowering, params, table);
+            self.vertical_force(balanced.lowering, settings, table);
         }
         self.last_root = Some(balanced.root(q));
         balanced.lowering
@@ -361,7 +487,8 @@ impl StripSide {
 /// from the strips, reference point at the patch's force centroid (interpolated between strips),
 /// tangential forces by the strip solvers of [`crate::tangential::strip_fastsim`] (planar or non-planar,
 /// flexibilities per [`TangentialModel`]; or a recorded solution scaled, as `tangential` says).
-/// Returns the upward force on the wheel [N].
+/// Returns the creep forces' upward component on the wheel: its upward force less that of the
+/// patches' normal forces ([`PatchFrame::vertical`], weighted) [N].
 pub(super) fn evaluate_strips(
     side: &mut Side,
     ctx: &Context,
@@ -394,6 +521,7 @@ pub(super) fn evaluate_strips(
             Ok((result, tangential)) => {
                 side.strip_of_group[out.n_groups] = Some(index);
                 upward += store_patch(side.sigma, result, patch.weight, tangential, out);
+                upward -= patch.weight * patch.frame(dz, ctx.strips.planar).vertical();
             }
             Err(e) => {
                 status = Err(e);
@@ -421,13 +549,13 @@ pub(super) fn strip_patch_result(
     (slot, key): (usize, usize),
     tangential: &mut Tangential,
 ) -> Result<(PatchResult, Vector3<f64>), InputError> {
-    let sc = summary.s_centroid;
-    let at = |v: &[f64]| patch.interpolate(v, sc);
+    let frame = patch.frame(dz, ctx.strips.planar);
+    let at = |v: &[f64]| patch.interpolate(v, frame.s);
     let reference = ContactPoint {
         lateral: at(&patch.points.lateral),
         longitudinal: at(&patch.geom.x_c),
         y_rail: at(&patch.points.y_rail),
-        contact_angle: patch.contact_angle(),
+        contact_angle: frame.angle,
         rolling_radius: at(&patch.points.rolling_radius),
         curv_a: at(&patch.geom.curv_a),
         curv_b: at(&patch.geom.curv_b),
@@ -443,7 +571,7 @@ pub(super) fn strip_patch_result(
     )?;
     let mu = ctx.material.friction;
     let t = tangential.patch(key, summary.normal_force, mu, || {
-        let at_reference = (&reference, creepage, speed);
+        let at_reference = (&reference, frame.s, creepage, speed);
         solve_strip_tangential(
             side,
             ctx,
@@ -456,7 +584,7 @@ pub(super) fn strip_patch_result(
         )
     })?;
     let mut result = PatchResult {
-        fn_: summary.normal_force,
+        fn_: frame.normal_force,
         area: summary.area,
         pmax: summary.pmax,
         a: equivalent.contact.a,
@@ -475,7 +603,20 @@ pub(super) fn strip_patch_result(
         ..PatchResult::default()
     };
     result.set_tangential(&t.solution);
-    Ok((result, t.tangential))
+    if ctx.strips.planar {
+        // In the patch's axes at this pass's angle (a reused solution's vector was summed in
+        // the axes of the pass that solved it).
+        let s = &t.solution;
+        return Ok((
+            result,
+            planar_tangential(side.sigma, frame.angle, s.fx, s.fy),
+        ));
+    }
+    // The wheel's force carries the strips' normal forces along their own normals: their
+    // resultant, less than the reported Σ N_j along e_z.
+    let (_, e_z) = contact_axes(side.sigma, frame.angle);
+    let tangential = t.tangential + e_z * (frame.normal_force - frame.resultant);
+    Ok((result, tangential))
 }
 
 /// The tangential problem of one strip patch (in slot `slot`, recorded under `key`; its
@@ -489,25 +630,29 @@ fn solve_strip_tangential(
     patch: &StripPatch,
     summary: &crate::normal::strips::PatchSummary,
     (slot, key): (usize, usize),
-    (reference, creepage, speed): (&ContactPoint, Creepage, f64),
+    (reference, s_ref, creepage, speed): (&ContactPoint, f64, Creepage, f64),
     equivalent: &EquivalentEllipse,
 ) -> Result<PatchTangential, InputError> {
     let settings = ctx.settings;
-    let sc = summary.s_centroid;
     let gamma = reference.contact_angle;
     let source = settings
         .tangential
         .flexibility_source(settings.normal_model);
     let b_floor = ctx.strips.params.b_floor();
-    let non_planar = (!settings.planar_patch)
-        .then(|| NonPlanar::new(input, side.sigma, settings.setup.wheel_radius, reference));
+    // Prescribed creepages hold on every strip (in its own axes); kinematic ones are each
+    // strip's own (docs/theory.md §5.8).
+    let non_planar = if settings.planar_patch {
+        None
+    } else {
+        NonPlanar::new(input, side.sigma)
+    };
     let n = patch.geom.len();
     // The strips' x is measured from the reference point (its yaw lead x_ref), where the
     // patch's creepages hold: the spin's lateral slip φ·x is then zero there, as in Kalker's
     // rigid slip w = (ξ − φy, η + φx) about the reference point.
     let x_ref = reference.longitudinal;
     for j in 0..n {
-        let lever = side.sigma * (patch.geom.s[j] - sc);
+        let lever = side.sigma * (patch.geom.s[j] - s_ref);
         let mut strip = TangentialStrip {
             lever,
             width: patch.geom.ds,
@@ -520,13 +665,10 @@ fn solve_strip_tangential(
         };
         if strip.half_length > 0.0 {
             if let Some(non_planar) = &non_planar {
+                // The strip's rigid slip is its own: no lever term of a reference spin.
                 let trig = (patch.points.sin_angle[j], patch.points.cos_angle[j]);
-                let d = non_planar.increment(strip_point(patch, j, x_ref), lever, trig);
-                strip.creepage = Creepage {
-                    xi: creepage.xi + d.xi,
-                    eta: creepage.eta + d.eta,
-                    phi: creepage.phi + d.phi,
-                };
+                strip.creepage = non_planar.creepage(strip_point(patch, j, x_ref), trig);
+                strip.reference_spin = 0.0;
             }
             strip.flexibility = strip_flexibilities(
                 source,
@@ -622,8 +764,8 @@ pub(super) fn solve_strips(
         let target = target.unwrap_or(f64::NAN);
         let mode = memo.pass(k, target, q, ctx.settings.reuse_tangential);
         let reused = mode.reuses();
-        evaluate_strips(side, ctx, input, dz, out, mode)?;
-        Ok::<_, WheelsetError>((creep_upward(out), reused))
+        let creep = evaluate_strips(side, ctx, input, dz, out, mode)?;
+        Ok::<_, WheelsetError>((creep, reused))
     };
     match load {
         None => pass(side, 0, None).map(|_| None),
