@@ -91,6 +91,7 @@ mod grid;
 mod influence;
 mod rolling;
 mod solver;
+pub mod wheel_rail;
 
 pub use grid::Grid;
 pub use influence::influence_coefficient;
