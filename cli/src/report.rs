@@ -25,6 +25,7 @@ pub mod plot;
 mod reference;
 mod study;
 mod tables;
+mod wheel;
 
 use crate::{workspace_root, Failure};
 use figures::{Creep, Outlines, Pressure, ReportFigure, ShiftRuns, Shifts, Spin};
@@ -239,6 +240,12 @@ pub(crate) fn run(args: &ReportArgs) -> Result<i32, Failure> {
         &CREEP_FULL
     };
     let (creep_own, creep_options) = creep_figure(&study, &mut out, grid)?;
+    let t = Instant::now();
+    let wheel_forces = wheel::section(&study)?;
+    eprintln!(
+        "railcontact report: wheel forces against the exact solution in {:.2} s",
+        t.elapsed().as_secs_f64()
+    );
     let runs = Runs {
         normal,
         unsmoothed,
@@ -282,6 +289,7 @@ pub(crate) fn run(args: &ReportArgs) -> Result<i32, Failure> {
         reference: out.reference,
         rows: rows.as_deref(),
         links: &links,
+        wheel_forces: &wheel_forces,
     };
     write(&markdown, &doc.markdown())?;
     eprintln!(
@@ -474,6 +482,8 @@ struct Document<'a> {
     rows: Option<&'a [tables::ErrorRow]>,
     /// Links (SVG, PNG) of the figures, relative to the document.
     links: &'a [[String; 2]],
+    /// The wheel-level section ([`wheel::section`]).
+    wheel_forces: &'a str,
 }
 
 /// Captions of the figures, in drawing order.
@@ -493,6 +503,7 @@ impl Document<'_> {
         md.push_str(&self.intro());
         md.push_str(&self.setup());
         md.push_str(&self.errors());
+        md.push_str(self.wheel_forces);
         md.push_str(&self.model_figures());
         md.push_str(&self.figures());
         md
@@ -507,8 +518,10 @@ impl Document<'_> {
              (`tangentialModel` 1–5) against CONTACT, which solves Kalker's exact half-space \
              theory, on the central case of `tests/data/README.md`: normal contact (patch area, \
              maximum pressure, maximum pressure per strip), pure spin (forces, spin moment, slip \
-             zone) and creep-force curves. CONTACT's numbers are read from its solutions in the reference \
-             directory; railcontact's are computed by the FMU's own code at its default settings.\n"
+             zone) and creep-force curves; and the wheel's forces over lateral shifts against the \
+             exact solution of the whole wheel (\"Wheel forces\"). CONTACT's numbers are read from \
+             its solutions in the reference directory; railcontact's are computed by the FMU's own \
+             code at its default settings.\n"
         );
         let _ = writeln!(
             md,

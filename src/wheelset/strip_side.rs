@@ -13,15 +13,17 @@
 //!    the whole load iteration of the step, and every quantity of the layout is a continuous
 //!    function of the pose and of the multi-Hertzian approach.
 //! 2. the patch's normal approach is δ_p = dz cos γ_p − g_p (g_p its normal gap at nominal
-//!    height) and the strip model gives its pressure; the wheel's vertical force is
-//!    Σ w_p N_p cos γ_p, with w_p the group's weight and γ_p the rail's angle at the patch's
-//!    force centroid (its reference point, along whose normal the planar patch's force acts),
-//!    plus the creep forces' vertical components (held fixed during the iteration);
+//!    height) and the strip model gives its pressure; the wheel's vertical force is the sum over
+//!    the patches, weighted by their groups' weights w_p, of their normal forces' vertical parts
+//!    ([`StripPatch::frame`]: a planar patch's N along the normal of the planar theory's plane at
+//!    this lowering, a non-planar one's strips each along their own normals), plus the creep
+//!    forces' vertical components (held fixed during the iteration);
 //! 3. prescribed load: dz by a bracketed Illinois iteration (N(dz) is continuous and increasing).
 //!
-//! Known limits: planar patches (one contact plane per patch; the strips' own angles are kept in
-//! [`StripPoints`] for the tangential problem); a patch that would extend beyond its strips'
-//! range (a model much softer than Hertz) is cut at the range's end.
+//! Known limits: one layout plane per patch for the normal problem (the strips' own angles,
+//! kept in [`StripPoints`], give the normal forces' directions of non-planar patches and their
+//! tangential problem); a patch that would extend beyond its strips' range (a model much softer
+//! than Hertz) is cut at the range's end.
 
 use nalgebra::Vector3;
 
@@ -484,7 +486,8 @@ impl StripSide {
 }
 
 /// Writes the outputs of the strip patches of `side` (solved at lowering `dz`): patch figures
-/// from the strips, reference point at the patch's force centroid (interpolated between strips),
+/// from the strips, reference point at the patch's force centroid (interpolated between strips)
+/// and normal force along its [`StripPatch::frame`],
 /// tangential forces by the strip solvers of [`crate::tangential::strip_fastsim`] (planar or non-planar,
 /// flexibilities per [`TangentialModel`]; or a recorded solution scaled, as `tangential` says).
 /// Returns the creep forces' upward component on the wheel: its upward force less that of the
@@ -518,10 +521,10 @@ pub(super) fn evaluate_strips(
         let slot = out.n_groups;
         let at = (slot, index);
         match strip_patch_result(side, ctx, input, patch, &summary, dz, at, &mut tangential) {
-            Ok((result, tangential)) => {
+            Ok((result, tangential, normal_upward)) => {
                 side.strip_of_group[out.n_groups] = Some(index);
                 upward += store_patch(side.sigma, result, patch.weight, tangential, out);
-                upward -= patch.weight * patch.frame(dz, ctx.strips.planar).vertical();
+                upward -= patch.weight * normal_upward;
             }
             Err(e) => {
                 status = Err(e);
@@ -535,9 +538,11 @@ pub(super) fn evaluate_strips(
 }
 
 /// Normal and tangential result of one strip patch (in output slot `slot`, `key` its index
-/// among the side's strip patches, [`PatchTangential::key`]), and its tangential force in track
-/// axes; the tangential problem solved or taken from a record as `tangential` says
-/// ([`Tangential::None`] solves it, unrecorded).
+/// among the side's strip patches, [`PatchTangential::key`]), its tangential force in track
+/// axes (with a non-planar patch's difference between its reported normal force and its strips'
+/// resultant) and the upward part of its normal forces' resultant [N]; the tangential problem
+/// solved or taken from a record as `tangential` says ([`Tangential::None`] solves it,
+/// unrecorded).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn strip_patch_result(
     side: &mut Side,
@@ -548,7 +553,7 @@ pub(super) fn strip_patch_result(
     dz: f64,
     (slot, key): (usize, usize),
     tangential: &mut Tangential,
-) -> Result<(PatchResult, Vector3<f64>), InputError> {
+) -> Result<(PatchResult, Vector3<f64>, f64), InputError> {
     let frame = patch.frame(dz, ctx.strips.planar);
     let at = |v: &[f64]| patch.interpolate(v, frame.s);
     let reference = ContactPoint {
@@ -607,16 +612,14 @@ pub(super) fn strip_patch_result(
         // In the patch's axes at this pass's angle (a reused solution's vector was summed in
         // the axes of the pass that solved it).
         let s = &t.solution;
-        return Ok((
-            result,
-            planar_tangential(side.sigma, frame.angle, s.fx, s.fy),
-        ));
+        let tangential = planar_tangential(side.sigma, frame.angle, s.fx, s.fy);
+        return Ok((result, tangential, frame.vertical()));
     }
     // The wheel's force carries the strips' normal forces along their own normals: their
     // resultant, less than the reported Σ N_j along e_z.
     let (_, e_z) = contact_axes(side.sigma, frame.angle);
     let tangential = t.tangential + e_z * (frame.normal_force - frame.resultant);
-    Ok((result, tangential))
+    Ok((result, tangential, frame.vertical()))
 }
 
 /// The tangential problem of one strip patch (in slot `slot`, recorded under `key`; its

@@ -263,6 +263,16 @@ impl Study {
 }
 
 impl Runner {
+    /// The values the next solve reads (its inputs: pose, loads, creepages).
+    pub fn values_mut(&mut self) -> &mut Values {
+        &mut self.values
+    }
+
+    /// The wheelset (its geometry and strip patches after the last solve).
+    pub fn wheelset(&self) -> &Wheelset {
+        &self.wheelset
+    }
+
     pub fn solve(&mut self) -> Result<WheelsetResult, Failure> {
         let input = wrc::input(
             &self.values,
