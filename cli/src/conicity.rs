@@ -10,6 +10,7 @@ use crate::Failure;
 use railcontact::fmi::variables::Values;
 use railcontact::models::wheel_rail_contact::{generated::var, profiles, settings};
 use railcontact::wheelset::conicity::{Conicity, RollingRadiusDifference, ShiftGrid};
+use railcontact::wheelset::Wheelset;
 use serde_json::{json, Map, Value};
 use std::fmt::Write as _;
 
@@ -25,12 +26,17 @@ pub struct ConicityOptions {
     pub step: f64,
     /// Whether the wheelset rolls to rest on both rails.
     pub roll: bool,
+    /// The loaded element's rolling radii under this load per wheel [N]
+    /// ([`RollingRadiusDifference::loaded`]); `None`: the rigid contact's (EN 15302).
+    pub load: Option<f64>,
 }
 
 /// The result of a run.
 #[derive(Debug, Clone)]
 pub struct ConicityRun {
     pub delta_r: RollingRadiusDifference,
+    /// The load of the loaded element's Δr [N] (`None`: rigid).
+    pub load: Option<f64>,
     pub table: Vec<Conicity>,
     /// λ(A) on a fine amplitude grid (0.25 mm to the largest amplitude, 0.05 mm apart) for the
     /// figure.
@@ -70,13 +76,25 @@ pub fn conicity(values: &Values, options: &ConicityOptions) -> Result<ConicityRu
         y_step: options.step,
         roll: options.roll,
     };
-    let delta_r = RollingRadiusDifference::compute(
-        &wheel,
-        &rail,
-        &settings.setup,
-        values.real(var::scanStep),
-        grid,
-    )
+    let delta_r = match options.load {
+        None => RollingRadiusDifference::compute(
+            &wheel,
+            &rail,
+            &settings.setup,
+            values.real(var::scanStep),
+            grid,
+        ),
+        Some(load) => {
+            if !(load.is_finite() && load > 0.0) {
+                return Err(Failure::Error(format!(
+                    "--load: load = {load} is outside the allowed range (0, inf) [N]"
+                )));
+            }
+            let mut wheelset = Wheelset::new(&wheel, &rail, settings)
+                .map_err(|e| Failure::Error(e.to_string()))?;
+            RollingRadiusDifference::loaded(&mut wheelset, load, grid)
+        }
+    }
     .map_err(|e| Failure::Error(e.to_string()))?;
     let at = |a: f64| {
         delta_r
@@ -94,6 +112,7 @@ pub fn conicity(values: &Values, options: &ConicityOptions) -> Result<ConicityRu
         .collect::<Result<_, _>>()?;
     Ok(ConicityRun {
         delta_r,
+        load: options.load,
         table,
         curve,
     })
@@ -126,6 +145,7 @@ pub fn to_json(values: &Values, run: &ConicityRun) -> Value {
         doc.insert(name.into(), Value::from(values.real(v)));
     }
     doc.insert("roll".into(), Value::from(d.grid().roll));
+    doc.insert("load".into(), number(run.load));
     doc.insert("r0".into(), Value::from(d.r0()));
     doc.insert("e0".into(), Value::from(d.e0()));
     let table: Vec<Value> = run

@@ -4,7 +4,7 @@
 //!   ([`railcontact_cli::solve`]);
 //! * `railcontact sweep [CASE.json] [--from Y0] [--to Y1] [--step DY]` — a text table over the
 //!   lateral shift `y` ([`railcontact_cli::sweep`]);
-//! * `railcontact conicity [CASE.json] [--amplitudes A,..] [--step DY] [--no-roll] [--out DIR]`
+//! * `railcontact conicity [CASE.json] [--amplitudes A,..] [--step DY] [--no-roll] [--load Q] [--out DIR]`
 //!   — the equivalent conicity (EN 15302) as JSON, with CSV tables and a figure in DIR
 //!   ([`railcontact_cli::conicity`], [`conicity_figure`]);
 //! * `railcontact report [CASE.json] [--out DIR] [--reference DIR] [--markdown FILE] [--quick]`
@@ -64,7 +64,7 @@ Exit codes:
     override_usage = "\
 railcontact solve [CASE.json] [--grid NX] [--traction]
        railcontact sweep [CASE.json] [--from Y0] [--to Y1] [--step DY]
-       railcontact conicity [CASE.json] [--amplitudes A,..] [--step DY] [--no-roll] [--out DIR]
+       railcontact conicity [CASE.json] [--amplitudes A,..] [--step DY] [--no-roll] [--load Q] [--out DIR]
        railcontact report [CASE.json] [--out DIR] [--reference DIR] [--markdown FILE] [--quick]
        railcontact help [COMMAND] | --help | -h"
 )]
@@ -153,6 +153,11 @@ struct SweepArgs {
 /// (y, deltaR, roll, rRight, rLeft, yRailRight, yRailLeft, contactAngleRight,
 /// contactAngleLeft; m and rad).
 ///
+/// With --load Q the rolling radii are the loaded element's instead (the case's normal model
+/// and settings, Q [N] on each wheel, zero creepage, no roll): each wheel's normal-force-weighted
+/// rolling radius over its patches, the radius where the load is — the same definition as the
+/// FMU's rollingRadius outputs.
+///
 /// With --out DIR it also writes DIR/conicity.json, DIR/conicity.csv (lambda per amplitude),
 /// DIR/delta_r.csv and the figure DIR/conicity.svg and DIR/conicity.png.
 #[derive(Debug, Args)]
@@ -175,6 +180,9 @@ struct ConicityArgs {
     /// Keeps the wheelset level (no roll): each wheel touches its rail on its own
     #[arg(long)]
     no_roll: bool,
+    /// The loaded element's rolling radii under this vertical load per wheel [N], > 0
+    #[arg(long, value_name = "Q")]
+    load: Option<f64>,
     /// Writes the JSON, the CSV tables and the figure into this directory (created if missing)
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
@@ -273,6 +281,7 @@ fn run_conicity(a: &ConicityArgs) -> Result<i32, Failure> {
         amplitudes: a.amplitudes.clone(),
         step: a.step,
         roll: !a.no_roll,
+        load: a.load,
     };
     let run = conicity::conicity(&values, &options)?;
     let doc = conicity::to_json(&values, &run);

@@ -631,3 +631,43 @@ fn conicity_prints_the_table_and_writes_csv_and_figure() {
         stderr(&o)
     );
 }
+
+/// `conicity --load`: the loaded element's Δr is made of the rolling radii the FMU reports
+/// (`railcontact solve` at zero creepage under the same load: each wheel's patches' rolling
+/// radii weighted by their normal forces), and a bad load is named with exit code 1.
+#[test]
+fn loaded_conicity_follows_the_elements_rolling_radii() {
+    let o = run(&["conicity", "--load", "60000", "--step", "0.001"]);
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
+    let doc = parse(&stdout(&o));
+    assert_eq!(doc["load"].as_f64(), Some(60_000.0));
+    let row = doc["deltaR"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["y"].as_f64() == Some(0.002))
+        .expect("y = 2 mm")
+        .clone();
+    let case = temp_file(
+        "loaded.json",
+        r#"{"y": 0.002, "Qleft": 60000, "Qright": 60000, "creepageMode": 2, "xi": 0, "eta": 0, "phi": 0}"#,
+    );
+    let solved = solve(&["solve", case.to_str().unwrap()]);
+    for (side, key) in [("right", "rRight"), ("left", "rLeft")] {
+        let (mut normal, mut moment) = (0.0, 0.0);
+        for k in 1..=3 {
+            let fn_ = real(&solved, &format!("{side}.p{k}.Fn"));
+            normal += fn_;
+            moment += fn_ * real(&solved, &format!("{side}.p{k}.rollingRadius"));
+        }
+        let r = row[key].as_f64().unwrap();
+        assert!(
+            (r - moment / normal).abs() < 1e-12,
+            "{side}: {r} vs {}",
+            moment / normal
+        );
+    }
+    let o = run(&["conicity", "--load=-5"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("--load: load = -5"), "{}", stderr(&o));
+}
