@@ -1,10 +1,12 @@
-//! Continuity of the wheel forces in the pose, as a host integrating a wheelset's motion needs
-//! them (docs/reliability.md, "Continuity"): sweeps of the lateral shift, the yaw and the roll
-//! through tread, flange-root and flange contact for every normal model, each step whose forces
-//! change by more than 0.5 % of the wheel load bisected down to 1e−12 m (a steep but continuous
-//! change shrinks with the interval; a jump does not). Also checked on every pose: no error, the
-//! load balanced to 1e−6, and an output slot keeps its patch (its reference point moves by less
-//! than the slot-matching distance from step to step).
+//! Continuity of the wheel forces and of every output slot in the pose, as a host integrating a
+//! wheelset's motion and following its patches needs them (docs/reliability.md, "Continuity";
+//! docs/conventions.md, "Output slots"): sweeps of the lateral shift, the yaw and the roll
+//! through tread, flange-root and flange contact for every normal model, each step whose outputs
+//! change by more than 0.5 % of their scale bisected down to 1e−12 m (a steep but continuous
+//! change shrinks with the interval; a jump does not). The outputs: both wheels' forces, and per
+//! slot its normal and lateral force, area, peak pressure and reference point. Also checked on
+//! every pose: no error, the load balanced to 1e−6, and no two reported patches of a wheel within
+//! 1 mm of each other.
 //!
 //! In release builds (`cargo test --release --test continuity`, run by `tests/run_all.sh`) the
 //! sweeps step 0.01 mm (the acceptance's resolution); debug builds step 0.1 mm.
@@ -15,11 +17,29 @@ use common::builtin_wheelset_with;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::{
-    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, MAX_PATCHES,
+    Creepages, PatchResult, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
+    MAX_PATCHES,
 };
 
-/// Largest change of a wheel force between two poses 1e−12 m apart, as a fraction of the load.
+/// Largest change of an output between two poses 1e−12 m apart, as a fraction of its scale:
+/// forces of the wheel load, areas of [`AREA_SCALE`], peak pressures and reference points
+/// weighted by the smaller of the slot's loads at the two poses (a slot filling from or emptying
+/// to zero load may place its patch anywhere).
 const JUMP: f64 = 5e-3;
+
+/// Scale of a patch's area [m²]: a full-load tread patch's (≈ 1.5e−4 m²); 0.5 % of it, 0.5 mm²,
+/// is what a jump must stay below.
+const AREA_SCALE: f64 = 1e-4;
+
+/// Scale of a peak pressure [Pa].
+const PRESSURE_SCALE: f64 = 1e9;
+
+/// Scale of a reference point's move [m]: a fully loaded slot's reference point must not jump
+/// by more than 0.5 % of a millimetre.
+const POSITION_SCALE: f64 = 1e-3;
+
+/// Two reported patches of a wheel lie at least this far apart [m].
+const PATCH_DISTANCE: f64 = 1e-3;
 
 /// Lateral-shift step of the sweeps [m].
 const STEP: f64 = if cfg!(debug_assertions) { 1e-4 } else { 1e-5 };
@@ -32,17 +52,54 @@ struct Pose {
     roll: f64,
 }
 
-/// Both wheels' force vectors (track axes) [N].
-fn forces(out: &WheelsetResult) -> [f64; 6] {
-    let (l, r) = (out.left.force, out.right.force);
-    [l[0], l[1], l[2], r[0], r[1], r[2]]
+/// The largest change between two poses' outputs, as a fraction of its scale, and what changed.
+fn largest_change(a: &WheelsetResult, b: &WheelsetResult, load: f64) -> (f64, String) {
+    let mut worst = (0.0, String::new());
+    let mut note = |change: f64, what: &dyn Fn() -> String| {
+        if change > worst.0 {
+            worst = (change, what());
+        }
+    };
+    for (wheel, sa, sb) in [("left", &a.left, &b.left), ("right", &a.right, &b.right)] {
+        for (axis, (fa, fb)) in ["Fx", "Fy", "Fz"]
+            .iter()
+            .zip(sa.force.iter().zip(&sb.force))
+        {
+            note((fa - fb).abs() / load, &|| format!("{wheel} {axis}"));
+        }
+        for k in 0..MAX_PATCHES {
+            let (pa, pb) = (&sa.patches[k], &sb.patches[k]);
+            let slot = |q: &str| format!("{wheel}.p{}.{q}", k + 1);
+            note((pa.fn_ - pb.fn_).abs() / load, &|| slot("Fn"));
+            note((pa.fy - pb.fy).abs() / load, &|| slot("Fy"));
+            note((pa.area - pb.area).abs() / AREA_SCALE, &|| slot("area"));
+            let loaded = pa.fn_.min(pb.fn_) / load;
+            note(loaded * (pa.pmax - pb.pmax).abs() / PRESSURE_SCALE, &|| {
+                slot("pmax")
+            });
+            note(
+                loaded * (pa.y_rail - pb.y_rail).abs() / POSITION_SCALE,
+                &|| slot("yRail"),
+            );
+            let moved = (0..3).fold(0.0_f64, |m, i| {
+                m.max((pa.position[i] - pb.position[i]).abs())
+            });
+            note(loaded * moved / POSITION_SCALE, &|| slot("position"));
+        }
+    }
+    worst
 }
 
-fn largest_change(a: &[f64; 6], b: &[f64; 6]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
+/// The closest two reported patches of a wheel [m] (+∞ with fewer than two).
+fn closest_patches(side: &SideResult) -> f64 {
+    let p: &[PatchResult] = side.all_patches();
+    let mut closest = f64::INFINITY;
+    for i in 0..p.len() {
+        for q in &p[i + 1..] {
+            closest = closest.min((p[i].y_rail - q.y_rail).abs());
+        }
+    }
+    closest
 }
 
 /// Largest relative miss of the wheel load a balanced pose may show: the creep iteration's
@@ -53,8 +110,8 @@ struct Sweep {
     ws: Wheelset,
     load: f64,
     out: WheelsetResult,
-    /// Worst change that survived bisection, and where.
-    worst: (f64, f64),
+    /// Worst change that survived bisection (fraction of its scale), where, and what.
+    worst: (f64, f64, String),
     solves: usize,
     /// Largest relative miss of the wheel load seen.
     worst_balance: f64,
@@ -80,15 +137,15 @@ impl Sweep {
             }),
             load,
             out: WheelsetResult::default(),
-            worst: (0.0, 0.0),
+            worst: (0.0, 0.0, String::new()),
             solves: 0,
             worst_balance: 0.0,
         }
     }
 
     /// Solves `pose` (kinematic creepages at 30 m/s, rolling at the nominal radius) and checks
-    /// the balance; returns the forces.
-    fn solve(&mut self, p: Pose) -> [f64; 6] {
+    /// the balance, finiteness and the patches' distance; returns the outputs.
+    fn solve(&mut self, p: Pose) -> WheelsetResult {
         let input = WheelsetInput {
             y: p.y,
             yaw: p.yaw,
@@ -104,85 +161,59 @@ impl Sweep {
                 omega: 30.0 / 0.46,
             },
         };
-        let previous = self.out;
         self.ws
             .solve(&input, &mut self.out)
             .unwrap_or_else(|e| panic!("{p:?}: {e}"));
         self.solves += 1;
-        let f = forces(&self.out);
-        for fz in [f[2], f[5]] {
-            let miss = (fz + self.load).abs() / self.load;
+        for side in [&self.out.left, &self.out.right] {
+            let miss = (side.force[2] + self.load).abs() / self.load;
             self.worst_balance = self.worst_balance.max(miss);
             assert!(
                 miss <= BALANCE_TOLERANCE,
-                "{p:?}: Fz {fz} for {}",
+                "{p:?}: Fz {} for {}",
+                side.force[2],
                 self.load
             );
+            assert!(side.force.iter().all(|v| v.is_finite()), "{p:?}: {side:?}");
+            let closest = closest_patches(side);
+            assert!(
+                closest >= PATCH_DISTANCE,
+                "{p:?}: two reported patches {closest} m apart"
+            );
         }
-        assert!(f.iter().all(|v| v.is_finite()), "{p:?}: {f:?}");
-        // A patch keeps its slot while it exists: a slot occupied in both steps whose reference
-        // point moved by more than the slot-matching distance (4 mm; poses a sweep step apart
-        // move it by far less) holds a new patch only if the old one is gone — no patch of this
-        // step lies within that distance of it, or the one that does kept a slot whose previous
-        // patch lay nearer to it (two patches merged into one) — or is no longer among the three
-        // heaviest that the slots show.
-        for (a, b) in [
-            (&previous.left, &self.out.left),
-            (&previous.right, &self.out.right),
-        ] {
-            for k in 0..MAX_PATCHES {
-                let (pa, pb) = (&a.patches[k], &b.patches[k]);
-                if !(pa.weight > 0.0 && pb.weight > 0.0 && (pa.y_rail - pb.y_rail).abs() > 4e-3) {
-                    continue;
-                }
-                for (j, q) in b.patches.iter().enumerate() {
-                    if q.weight <= 0.0 || (q.y_rail - pa.y_rail).abs() > 4e-3 {
-                        continue;
-                    }
-                    let earlier = &a.patches[j];
-                    assert!(
-                        earlier.weight > 0.0
-                            && (earlier.y_rail - q.y_rail).abs() <= (pa.y_rail - q.y_rail).abs(),
-                        "{p:?}: slot {k} from yRail {} to {} while the patch at {} is in slot {j}",
-                        pa.y_rail,
-                        pb.y_rail,
-                        q.y_rail
-                    );
-                }
-            }
-        }
-        f
+        self.out
     }
 
     /// Walks the poses `at(t)` for t = 0 … 1 and back in `n` steps, bisecting every step whose
     /// forces change by more than [`JUMP`] of the load down to a pose interval of 1e−12 (in the
     /// swept coordinate, scaled by `scale` to metres or radians).
     fn walk(&mut self, n: usize, at: impl Fn(f64) -> Pose) {
-        let threshold = JUMP * self.load;
         let ts: Vec<f64> = (0..=n)
             .chain((0..n).rev())
             .map(|k| k as f64 / n as f64)
             .collect();
-        let mut previous: Option<(f64, [f64; 6])> = None;
+        let load = self.load;
+        let change = |a: &WheelsetResult, b: &WheelsetResult| largest_change(a, b, load).0;
+        let mut previous: Option<(f64, WheelsetResult)> = None;
         for &t in &ts {
             let f = self.solve(at(t));
             if let Some((tp, fp)) = previous {
-                if largest_change(&f, &fp) > threshold {
+                if change(&f, &fp) > JUMP {
                     let (mut a, mut fa, mut b, mut fb) = (tp, fp, t, f);
                     // Down to 1e−12 m of the swept coordinate (the sweeps span ~2e−2 m or rad),
                     // following the half with the larger change.
                     while (b - a).abs() * 2e-2 > 1e-12 {
                         let m = 0.5 * (a + b);
                         let fm = self.solve(at(m));
-                        if largest_change(&fm, &fa) > largest_change(&fm, &fb) {
+                        if change(&fm, &fa) > change(&fm, &fb) {
                             (b, fb) = (m, fm);
                         } else {
                             (a, fa) = (m, fm);
                         }
                     }
-                    let change = largest_change(&fa, &fb);
-                    if change > self.worst.0 {
-                        self.worst = (change, a);
+                    let (size, what) = largest_change(&fa, &fb, load);
+                    if size > self.worst.0 {
+                        self.worst = (size, a, what);
                     }
                     self.solve(at(t));
                 }
@@ -194,16 +225,18 @@ impl Sweep {
 
 fn check(label: &str, sweep: &Sweep) {
     eprintln!(
-        "{label}: {} solves, largest change surviving bisection {:.3} % of Q, load missed by \
+        "{label}: {} solves, largest change surviving bisection {:.3} % ({}), load missed by \
          at most {:.1e}",
         sweep.solves,
-        100.0 * sweep.worst.0 / sweep.load,
+        100.0 * sweep.worst.0,
+        sweep.worst.2,
         sweep.worst_balance
     );
     assert!(
-        sweep.worst.0 <= JUMP * sweep.load,
-        "{label}: a force jumps by {:.3} % of the load at sweep parameter {}",
-        100.0 * sweep.worst.0 / sweep.load,
+        sweep.worst.0 <= JUMP,
+        "{label}: {} jumps by {:.3} % of its scale at sweep parameter {}",
+        sweep.worst.2,
+        100.0 * sweep.worst.0,
         sweep.worst.1
     );
 }

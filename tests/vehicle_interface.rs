@@ -226,7 +226,7 @@ fn a_mirrored_pose_mirrors_the_wrench() {
 /// Positions: without yaw and roll the reference point lies in the axle's vertical plane
 /// (xPos = 0) at the rolling radius below the centre (zPos = rollingRadius); under a yaw ψ the
 /// wheel itself moves to x = −yPos tan ψ, and the lowest point of a yawed wheel of revolution
-/// leads by r tan γ tan ψ (σ = +1 right, −1 left; `src/geometry/search.rs`): on the tread
+/// leads by r tan γ tan ψ (σ = +1 right, −1 left; `src/geometry/search/lowest_point.rs`): on the tread
 /// (γ ≈ 0.03, lead 0.1 mm) the sum holds within 1e−3 of |xPos| (the rail's angle at the reference
 /// point stands for the wheel's slope there); in flange contact (γ ≈ 1.2, a lead of 12 mm at
 /// ψ = 0.01) within 5 % of the lead, the angle varying steeply across the flange patch whose

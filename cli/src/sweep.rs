@@ -23,8 +23,11 @@ pub struct SweepRange {
 
 /// One wheel in one row.
 struct SideRow {
-    /// Per patch: yRail [m], contact angle [rad], Fn [N], rolling radius [m].
-    patches: Vec<[f64; 4]>,
+    /// The number of patches in the output slots.
+    count: usize,
+    /// Per output slot: yRail [m], contact angle [rad], Fn [N], rolling radius [m]; `None`
+    /// where the slot is empty.
+    patches: [Option<[f64; 4]>; MAX_PATCHES],
     fy: f64,
 }
 
@@ -112,37 +115,38 @@ pub fn sweep(mut values: Values, range: SweepRange) -> Result<(String, SweepOutc
 }
 
 fn side_row(values: &Values, side: &str) -> Result<SideRow, Failure> {
-    let n = usize::try_from(output_integer(values, &format!("{side}.nPatches"))?)
+    let count = usize::try_from(output_integer(values, &format!("{side}.nPatches"))?)
         .unwrap_or(0)
         .min(MAX_PATCHES);
-    let mut patches = Vec::with_capacity(n);
-    for k in 1..=n {
+    let mut patches = [None; MAX_PATCHES];
+    for (k, slot) in patches.iter_mut().enumerate() {
         let mut patch = [0.0; 4];
         for (x, q) in patch
             .iter_mut()
             .zip(["yRail", "contactAngle", "Fn", "rollingRadius"])
         {
-            *x = output_real(values, &format!("{side}.p{k}.{q}"))?;
+            *x = output_real(values, &format!("{side}.p{}.{q}", k + 1))?;
         }
-        patches.push(patch);
+        // An empty slot has every output zero.
+        *slot = (patch[2] > 0.0).then_some(patch);
     }
     Ok(SideRow {
+        count,
         patches,
         fy: output_real(values, &format!("{side}.Fy"))?,
     })
 }
 
 fn table(values: &Values, range: SweepRange, rows: &[(f64, Row)]) -> String {
-    // Patch column groups per wheel: as many as the sweep needs (at least one).
+    // Slot column groups per wheel: up to the last slot the sweep uses (at least one).
     let groups: [usize; 2] = [0, 1].map(|s| {
         rows.iter()
             .filter_map(|(_, r)| match r {
-                Row::Values(sides, _) => Some(sides[s].patches.len()),
+                Row::Values(sides, _) => sides[s].patches.iter().rposition(Option::is_some),
                 Row::Note(_) => None,
             })
             .max()
-            .unwrap_or(0)
-            .max(1)
+            .map_or(1, |k| k + 1)
     });
     let mut header = vec!["y[mm]".to_string()];
     for (s, letter) in ["L", "R"].iter().enumerate() {
@@ -179,8 +183,9 @@ fn table(values: &Values, range: SweepRange, rows: &[(f64, Row)]) -> String {
     let _ = writeln!(
         out,
         "# y = lateral shift of the wheelset; L/R = left/right wheel: n = number of patches; pK = \
-         patch K (field side first): yRail, gamma = contact angle, Fn = normal force, r = rolling \
-         radius; Fy = total lateral force of the rail on the wheel ('-': no such patch)"
+         output slot K (a patch keeps its slot while it exists; slots are not ordered in space): \
+         yRail, gamma = contact angle, Fn = normal force, r = rolling radius ('-': empty slot); \
+         Fy = total lateral force of the rail on the wheel"
     );
     let cells: Vec<String> = header
         .iter()
@@ -198,9 +203,9 @@ fn table(values: &Values, range: SweepRange, rows: &[(f64, Row)]) -> String {
             }
             Row::Values(sides, warning) => {
                 for (s, side) in sides.iter().enumerate() {
-                    cells.push(side.patches.len().to_string());
+                    cells.push(side.count.to_string());
                     for k in 0..groups[s] {
-                        match side.patches.get(k) {
+                        match side.patches[k] {
                             Some([y_rail, gamma, fn_, r]) => cells.extend([
                                 format!("{:.3}", y_rail * 1e3),
                                 format!("{gamma:.5}"),

@@ -33,10 +33,12 @@ fn demo(model_identifier: &str) -> Option<Demo> {
             from: 0.0,
             to: 0.008,
             columns: &[
-                "right.p2.Fn",
-                "right.p1.yRail",
-                "right.p1.contactAngle",
                 "right.p1.Fn",
+                "right.p1.yRail",
+                "right.p2.Fn",
+                "right.p2.yRail",
+                "right.p3.Fn",
+                "right.p3.yRail",
                 "right.Fy",
                 "left.Fy",
             ],
@@ -164,6 +166,18 @@ fn sweep(
     }
     println!();
     let columns: Vec<u32> = demo.columns.iter().map(|c| f.vr(c)).collect();
+    // A patch slot's column ("side.pK.…") prints "-" while the slot is empty (its Fn is zero).
+    let slot_fn: Vec<Option<usize>> = demo
+        .columns
+        .iter()
+        .map(|c| {
+            let slot = c.rsplit_once('.').map(|(prefix, _)| prefix)?;
+            slot.rsplit_once('.')
+                .filter(|(_, p)| p.starts_with('p') && p[1..].parse::<u32>().is_ok())?;
+            let fn_column = format!("{slot}.Fn");
+            demo.columns.iter().position(|d| *d == fn_column)
+        })
+        .collect();
     let mut row = vec![0.0; columns.len()];
     for k in 0..steps {
         let t = start + k as f64 * step;
@@ -172,11 +186,15 @@ fn sweep(
         check(f.step(t, step), "fmi2DoStep")?;
         check(f.get_reals(&columns, &mut row), "fmi2GetReal")?;
         print!("{:>10.4} {value:>12.4e}", t + step);
-        for x in &row {
+        for (x, fn_column) in row.iter().zip(&slot_fn) {
             if !x.is_finite() {
                 return Err(format!("non-finite output {x}"));
             }
-            print!(" {x:>16.6e}");
+            if fn_column.is_some_and(|k| row[k] == 0.0) {
+                print!(" {:>16}", "-");
+            } else {
+                print!(" {x:>16.6e}");
+            }
         }
         println!();
     }

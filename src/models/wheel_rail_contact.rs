@@ -592,10 +592,10 @@ fn not_initialized() -> ModelError {
     ModelError::Error("model used before initialization".into())
 }
 
-/// Version of the solver-history layout in FMU states (7: warm start with the approach, creep
+/// Version of the solver-history layout in FMU states (8: warm start with the approach, creep
 /// component and load-balance slope, each with its change and bend, the strip ratio, and the
-/// output slots).
-const HISTORY_VERSION: u8 = 7;
+/// output slots of the reported patches, one per contact region).
+const HISTORY_VERSION: u8 = 8;
 /// Values of one wheel's warm start in the layout ([`warm_fields`]).
 const WARM_FIELDS: usize = 10;
 /// Bytes of one wheel's warm start: flag (0 none, else 1 + [`WarmStart::history`]), then its

@@ -176,6 +176,14 @@ struct RunEllipse {
     half_length: f64,
 }
 
+/// Length of the part of the strip of centre `s` and width `ds` within `half_width` of `centre`
+/// [m].
+fn strip_overlap(s: f64, ds: f64, centre: f64, half_width: f64) -> f64 {
+    let low = (s - 0.5 * ds).max(centre - half_width);
+    let high = (s + 0.5 * ds).min(centre + half_width);
+    (high - low).max(0.0)
+}
+
 /// A relative curvature usable as A: finite and positive.
 fn valid_curvature(curv: f64) -> bool {
     curv.is_finite() && curv > 0.0
@@ -390,6 +398,15 @@ impl StripModel for Linder {
             if out.half_length[j] > 0.0 {
                 out.local_axes[j] = (semi_x, ellipse.half_width);
             }
+        }
+        // The area inside the ellipse's lateral bounds (docs/theory.md §5.3, "area").
+        for j in 0..n {
+            if !self.in_contact(geom, j) {
+                continue;
+            }
+            let inside = strip_overlap(geom.s[j], geom.ds, ellipse.centre, ellipse.half_width);
+            let area = 2.0 * (self.margin[j] / geom.curv_a[j]).sqrt() * inside;
+            out.area_correction[j] = area - 2.0 * out.half_length[j] * geom.ds;
         }
         out.normal_force()
     }

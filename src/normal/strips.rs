@@ -23,6 +23,10 @@ pub struct StripSolution {
     /// tangential problem's strip-wise flexibilities (docs/theory.md §4.7); (0, 0) where the model
     /// defines none (only Linder sets it: (a_j, b_L)).
     pub local_axes: PerStrip<(f64, f64)>,
+    /// Correction of strip i's contact area 2 x_l,i Δs [m²] (0 unless the model sets it): Linder
+    /// bounds its patch laterally by its virtual ellipse, so the strips at its edges lie partly
+    /// inside it (docs/theory.md §5.3, "area").
+    pub area_correction: PerStrip<f64>,
 }
 
 impl StripSolution {
@@ -44,6 +48,7 @@ impl StripSolution {
         self.pmax[..n].fill(0.0);
         self.force[..n].fill(0.0);
         self.local_axes[..n].fill((0.0, 0.0));
+        self.area_correction[..n].fill(0.0);
     }
 
     /// Sets strip `i` to a semi-ellipse of half-length `half_length` and peak `pmax`; strip width
@@ -108,18 +113,20 @@ impl PatchSummary {
         let mut moment = 0.0;
         let (mut area_s, mut area_s2) = (0.0, 0.0);
         for i in 0..sol.n.min(geom.n) {
+            let strip_area = 2.0 * sol.half_length[i] * geom.ds + sol.area_correction[i];
+            if strip_area > 0.0 {
+                out.area += strip_area;
+                area_s += strip_area * geom.s[i];
+                area_s2 += strip_area * geom.s[i] * geom.s[i];
+            }
             if sol.half_length[i] <= 0.0 {
                 continue;
             }
-            let strip_area = 2.0 * sol.half_length[i] * geom.ds;
-            area_s += strip_area * geom.s[i];
-            area_s2 += strip_area * geom.s[i] * geom.s[i];
             first.get_or_insert(i);
             last = i;
             out.strips_in_contact += 1;
             out.normal_force += sol.force[i];
             moment += sol.force[i] * geom.s[i];
-            out.area += 2.0 * sol.half_length[i] * geom.ds;
             out.pmax = out.pmax.max(sol.pmax[i]);
             out.length = out.length.max(2.0 * sol.half_length[i]);
         }

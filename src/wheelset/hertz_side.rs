@@ -93,7 +93,8 @@ pub(super) fn evaluate_side(
             continue;
         };
         if side.n_ellipses < MAX_GROUPS {
-            side.ellipses[side.n_ellipses] = (reference, patch, group.weight, key);
+            let bounds = group_bounds(candidates, ridges, group, scan);
+            side.ellipses[side.n_ellipses] = (reference, patch, group.weight, key, bounds);
             side.n_ellipses += 1;
         }
     }
@@ -117,7 +118,10 @@ pub(super) fn complete_ellipses(
     };
     let mut upward = 0.0;
     for k in 0..side.n_ellipses {
-        let (reference, patch, weight, key) = side.ellipses[k];
+        let (reference, patch, weight, key, bounds) = side.ellipses[k];
+        if out.n_groups < MAX_GROUPS {
+            side.part_bounds[out.n_groups] = bounds;
+        }
         upward += add_patch(
             side,
             ctx,

@@ -37,13 +37,13 @@ pub mod balance;
 pub mod conicity;
 mod hertz_side;
 mod kinematics;
+pub mod regions;
 mod reuse;
-mod slots;
 pub mod strip_side;
 pub mod validity;
 
 pub use balance::{Trend, WarmStart, LOAD_CHECK_FLOOR, LOAD_CHECK_TOLERANCE};
-pub use slots::Slot;
+pub use regions::Slot;
 
 use nalgebra::Vector3;
 
@@ -61,7 +61,6 @@ use crate::tangential::fastsim::{Creepage, Fastsim, FastsimSettings};
 use crate::tangential::patch::TangentialModel;
 use crate::tangential::strip_fastsim::{StripFastsim, StripFastsimResult, TangentialStrip};
 use balance::check_balance;
-use slots::assign_slots;
 use strip_side::{solve_strips, StripSettings, StripSide};
 
 /// Patches reported per wheel.
@@ -239,11 +238,17 @@ pub struct TractionElement {
 pub struct SideResult {
     /// Patches in the output slots (`patches[k]` with `weight` > 0).
     pub n_patches: usize,
-    /// The output slots: a patch keeps its slot while it exists (matched from step to step by
-    /// its reference point); a new patch takes the first free slot. Unused slots are zero.
+    /// The output slots: a reported patch keeps its slot while it exists (matched from step to
+    /// step by its reference point, [`regions`]); a new patch takes the first free slot. Unused
+    /// slots are zero.
     pub patches: [PatchResult; MAX_PATCHES],
-    /// Every patch of the wheel, also those beyond the output slots (their forces are in
-    /// `force`): `groups[..n_groups]`.
+    /// Every reported patch of the wheel, one per contact region ([`regions`]), also those
+    /// beyond the output slots (their forces are in `force`): `regions[..n_regions]`.
+    pub n_regions: usize,
+    pub regions: [PatchResult; regions::MAX_REGIONS],
+    /// The internal descriptions the wheel's forces are the weighted sum of (the patch groups'
+    /// patches, [`crate::geometry::groups`]; forces, area and power weighted):
+    /// `groups[..n_groups]`.
     pub n_groups: usize,
     pub groups: [PatchResult; MAX_GROUPS],
     /// Total force of the rail on the wheel in track axes [N].
@@ -266,9 +271,9 @@ impl SideResult {
         self.patches.iter().filter(|p| p.weight > 0.0)
     }
 
-    /// Every patch of the wheel, also those beyond the output slots.
+    /// Every reported patch of the wheel, also those beyond the output slots.
     pub fn all_patches(&self) -> &[PatchResult] {
-        &self.groups[..self.n_groups]
+        &self.regions[..self.n_regions]
     }
 }
 
@@ -330,6 +335,10 @@ impl From<InputError> for WheelsetError {
     }
 }
 
+/// A multi-Hertzian patch of a normal solution: reference point, normal solution, weight, its
+/// group's index in the layout and the group's lateral bounds.
+type Ellipse = (ContactPoint, PatchResult, f64, usize, (f64, f64));
+
 /// One wheel with its solver buffers.
 struct Side {
     name: &'static str,
@@ -348,11 +357,15 @@ struct Side {
     /// The last prescribed-load solution, the next one's starting point.
     warm: Option<WarmStart>,
     /// The multi-Hertzian patches of the last normal solution: reference point, normal solution,
-    /// weight and the index of its group in the step's layout (`evaluate_side`).
-    ellipses: [(ContactPoint, PatchResult, f64, usize); MAX_GROUPS],
+    /// weight, the index of its group in the step's layout and the group's lateral bounds
+    /// (`evaluate_side`).
+    ellipses: [Ellipse; MAX_GROUPS],
     n_ellipses: usize,
     /// For each entry of `SideResult::groups` of a strip model, its patch in `strips`.
     strip_of_group: [Option<usize>; MAX_GROUPS],
+    /// For each entry of `SideResult::groups`, the laterals (wheelset frame) its load lies
+    /// between: a Hertz patch's group's bounds, a strip patch's strips' (for [`regions`]).
+    part_bounds: [(f64, f64); MAX_GROUPS],
     /// The patches in the output slots after the last solve: their `y_rail` (the identity
     /// matched in the next step) and their index in `SideResult::groups`.
     slots: [Option<Slot>; MAX_PATCHES],
@@ -416,9 +429,16 @@ impl Wheelset {
                 tangential_strips: vec![TangentialStrip::default(); MAX_STRIPS],
                 last_y_rail: [0.0; MAX_GROUPS],
                 warm: None,
-                ellipses: [(ContactPoint::default(), PatchResult::default(), 0.0, 0); MAX_GROUPS],
+                ellipses: [(
+                    ContactPoint::default(),
+                    PatchResult::default(),
+                    0.0,
+                    0,
+                    (0.0, 0.0),
+                ); MAX_GROUPS],
                 n_ellipses: 0,
                 strip_of_group: [None; MAX_GROUPS],
+                part_bounds: [(0.0, 0.0); MAX_GROUPS],
                 slots: [None; MAX_PATCHES],
             })
         };
@@ -708,7 +728,7 @@ fn solve_side(
     }
     check_balance(side.name, load, out)?;
     out.derailment_quotient = derailment_quotient(s, out.force);
-    assign_slots(&mut side.slots, out);
+    regions::report(side, input, ctx.settings.planar_patch, out);
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)
         .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratio, slope));

@@ -523,6 +523,8 @@ pub(super) fn evaluate_strips(
         match strip_patch_result(side, ctx, input, patch, &summary, dz, at, &mut tangential) {
             Ok((result, tangential, normal_upward)) => {
                 side.strip_of_group[out.n_groups] = Some(index);
+                let lateral = &patch.points.lateral;
+                side.part_bounds[out.n_groups] = (lateral[0], lateral[patch.geom.len() - 1]);
                 upward += store_patch(side.sigma, result, patch.weight, tangential, out);
                 upward -= patch.weight * normal_upward;
             }

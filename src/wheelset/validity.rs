@@ -202,10 +202,12 @@ mod tests {
             let mut s = SideResult {
                 n_patches: p.len(),
                 n_groups: p.len(),
+                n_regions: p.len(),
                 ..SideResult::default()
             };
             s.patches[..p.len()].copy_from_slice(p);
             s.groups[..p.len()].copy_from_slice(p);
+            s.regions[..p.len()].copy_from_slice(p);
             s
         };
         WheelsetResult {
@@ -230,9 +232,9 @@ mod tests {
         assert_eq!((w.value, w.limit), (1.5e-3, MAX_PENETRATION));
         let w = validity(&result(&[patch(1.2e-3)], &[ok, ok, patch(2e-3)])).unwrap();
         assert_eq!((w.wheel, w.patch, w.value), ("right", 3, 2e-3));
-        // Patches beyond n_groups are not looked at.
+        // Patches beyond n_regions are not looked at.
         let mut r = result(&[ok], &[ok]);
-        r.right.groups[2] = patch(0.05);
+        r.right.regions[2] = patch(0.05);
         assert_eq!(validity(&r), None);
         // NaN is not plausible.
         let w = validity(&result(&[patch(f64::NAN)], &[])).unwrap();
