@@ -2,8 +2,8 @@
 //! wheelset's motion and following its patches needs them (docs/reliability.md, "Continuity";
 //! docs/conventions.md, "Output slots"): sweeps of the lateral shift, the yaw and the roll
 //! through tread, flange-root and flange contact for every normal model, each step whose outputs
-//! change by more than 0.5 % of their scale bisected down to 1e−12 m (a steep but continuous
-//! change shrinks with the interval; a jump does not). The outputs: both wheels' forces, and per
+//! change by more than 0.5 % of their scale refined along the path down to 1e−12 m (a steep but
+//! continuous change shrinks with the interval; a jump does not). The outputs: both wheels' forces, and per
 //! slot its normal and lateral force, area, peak pressure and reference point. Also checked on
 //! every pose: no error, the load balanced to 1e−6, and no two reported patches of a wheel within
 //! 1 mm of each other.
@@ -17,8 +17,8 @@ use common::builtin_wheelset_with;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::{
-    Creepages, PatchResult, SideResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
-    MAX_PATCHES,
+    Creepages, PatchResult, SideResult, Slot, Vertical, WarmStart, Wheelset, WheelsetInput,
+    WheelsetResult, MAX_PATCHES,
 };
 
 /// Largest change of an output between two poses 1e−12 m apart, as a fraction of its scale:
@@ -184,9 +184,22 @@ impl Sweep {
         self.out
     }
 
-    /// Walks the poses `at(t)` for t = 0 … 1 and back in `n` steps, bisecting every step whose
-    /// forces change by more than [`JUMP`] of the load down to a pose interval of 1e−12 (in the
-    /// swept coordinate, scaled by `scale` to metres or radians).
+    /// The solver's history (what an FMU state holds: warm starts and output slots).
+    fn history(&self) -> History {
+        (self.ws.warm_start(), self.ws.slots())
+    }
+
+    fn restore(&mut self, h: History) {
+        self.ws.set_warm_start(h.0);
+        self.ws.set_slots(h.1);
+    }
+
+    /// Walks the poses `at(t)` for t = 0 … 1 and back in `n` steps. A step whose outputs change
+    /// by more than [`JUMP`] is refined along the path, as a host reducing its step would: from
+    /// the state at the step's start, the half with the larger change is walked again, down to a
+    /// pose interval of 1e−12 (in the swept coordinate, scaled by 2e−2 to metres or radians).
+    /// (The element's slots follow the path taken; solving poses out of order would mix two
+    /// histories.)
     fn walk(&mut self, n: usize, at: impl Fn(f64) -> Pose) {
         let ts: Vec<f64> = (0..=n)
             .chain((0..n).rev())
@@ -194,34 +207,40 @@ impl Sweep {
             .collect();
         let load = self.load;
         let change = |a: &WheelsetResult, b: &WheelsetResult| largest_change(a, b, load).0;
-        let mut previous: Option<(f64, WheelsetResult)> = None;
+        let mut previous: Option<(f64, WheelsetResult, History)> = None;
         for &t in &ts {
             let f = self.solve(at(t));
-            if let Some((tp, fp)) = previous {
+            if let Some((tp, fp, hp)) = previous {
                 if change(&f, &fp) > JUMP {
-                    let (mut a, mut fa, mut b, mut fb) = (tp, fp, t, f);
-                    // Down to 1e−12 m of the swept coordinate (the sweeps span ~2e−2 m or rad),
-                    // following the half with the larger change.
+                    let after = self.history();
+                    // (start pose, its outputs, the state after it), (end pose, its outputs).
+                    let (mut a, mut fa, mut ha, mut b, mut fb) = (tp, fp, hp, t, f);
                     while (b - a).abs() * 2e-2 > 1e-12 {
                         let m = 0.5 * (a + b);
+                        self.restore(ha);
                         let fm = self.solve(at(m));
-                        if change(&fm, &fa) > change(&fm, &fb) {
+                        let hm = self.history();
+                        let fb_via_m = self.solve(at(b));
+                        if change(&fm, &fa) >= change(&fb_via_m, &fm) {
                             (b, fb) = (m, fm);
                         } else {
-                            (a, fa) = (m, fm);
+                            (a, fa, ha, fb) = (m, fm, hm, fb_via_m);
                         }
                     }
                     let (size, what) = largest_change(&fa, &fb, load);
                     if size > self.worst.0 {
                         self.worst = (size, a, what);
                     }
-                    self.solve(at(t));
+                    self.restore(after);
                 }
             }
-            previous = Some((t, f));
+            previous = Some((t, f, self.history()));
         }
     }
 }
+
+/// An FMU state's solver history: warm starts and output slots of both wheels.
+type History = ([Option<WarmStart>; 2], [[Option<Slot>; MAX_PATCHES]; 2]);
 
 fn check(label: &str, sweep: &Sweep) {
     eprintln!(

@@ -323,9 +323,13 @@ fn pieces(
                 let n = patch.geom.len();
                 let lateral = &patch.points.lateral;
                 let mut acc = [StripShare::default(); MAX_CANDIDATES];
+                let mut all = StripShare::default();
                 for j in 0..n.min(patch.sol.n) {
-                    let force = patch.sol.force[j];
-                    if force <= 0.0 {
+                    let force = patch.sol.force[j].max(0.0);
+                    // The strip's area as the patch summary counts it.
+                    let area = 2.0 * patch.sol.half_length[j] * patch.geom.ds
+                        + patch.sol.area_correction[j];
+                    if force <= 0.0 && area <= 0.0 {
                         continue;
                     }
                     let before = if j > 0 {
@@ -347,10 +351,7 @@ fn pieces(
                         ..ContactPoint::default()
                     };
                     let position = point_position(side.sigma, &point, input.yaw, input.roll);
-                    for (e, &w) in acc.iter_mut().zip(&shares).take(basins.count) {
-                        if w <= 0.0 {
-                            continue;
-                        }
+                    let strip = |e: &mut StripShare, w: f64| {
                         let f = w * force;
                         e.normal += f;
                         e.direction.0 += f * patch.points.sin_angle[j];
@@ -358,23 +359,51 @@ fn pieces(
                         e.y_rail += f * patch.points.y_rail[j];
                         e.radius += f * patch.points.rolling_radius[j];
                         e.position += position * f;
-                        e.area += w * 2.0 * patch.sol.half_length[j] * patch.geom.ds;
+                        e.area += w * area.max(0.0);
                         e.pmax = e.pmax.max(w * patch.sol.pmax[j]);
+                    };
+                    strip(&mut all, 1.0);
+                    for (e, &w) in acc.iter_mut().zip(&shares).take(basins.count) {
+                        if w > 0.0 {
+                            strip(e, w);
+                        }
                     }
                 }
-                let total: f64 = acc[..basins.count].iter().map(|e| e.normal).sum();
+                if all.normal <= 0.0 {
+                    continue;
+                }
+                // Each piece: the part's figures moved by how its strips' means differ from the
+                // whole part's, so that a part whose strips all lie in one basin is reported as it
+                // is, and a piece changes continuously as strips cross a basin's bound.
+                let mean = |e: &StripShare| {
+                    (
+                        e.direction.0.atan2(e.direction.1),
+                        e.y_rail / e.normal,
+                        e.radius / e.normal,
+                        e.position / e.normal,
+                    )
+                };
+                let (angle_all, y_all, radius_all, position_all) = mean(&all);
                 for (basin, e) in acc[..basins.count].iter().enumerate() {
-                    if e.normal <= 0.0 || total <= 0.0 {
+                    if e.normal <= 0.0 && e.area <= 0.0 {
                         continue;
                     }
-                    let mut r = scaled(&result, e.normal / total);
-                    if !planar {
-                        r.contact_angle = e.direction.0.atan2(e.direction.1);
+                    let mut r = scaled(&result, e.normal / all.normal);
+                    if e.normal > 0.0 {
+                        let (angle, y, radius, position) = mean(e);
+                        if !planar {
+                            r.contact_angle = result.contact_angle + (angle - angle_all);
+                        }
+                        r.y_rail = result.y_rail + (y - y_all);
+                        r.rolling_radius = result.rolling_radius + (radius - radius_all);
+                        r.position =
+                            (Vector3::from(result.position) + (position - position_all)).into();
                     }
-                    r.y_rail = e.y_rail / e.normal;
-                    r.rolling_radius = e.radius / e.normal;
-                    r.area = result.weight * e.area;
-                    r.position = (e.position / e.normal).into();
+                    r.area = if all.area > 0.0 {
+                        result.area * e.area / all.area
+                    } else {
+                        0.0
+                    };
                     r.pmax = e.pmax;
                     pieces[count] = Piece {
                         basin,
