@@ -108,15 +108,21 @@ fn poses() -> Vec<Vec<(&'static str, f64)>> {
 }
 
 /// The moment outputs equal Σ r × F + Mz e_z rebuilt from the patch outputs (positions, angles,
-/// forces) and the forces their sum — to round-off on Hertz patches and planar strip patches,
-/// whose patch forces are the vectors summed into the totals. Non-planar strip patches sum each
-/// strip's force in its own axes, and `pk.Fy` is only the component along the patch's e_y: their
-/// forces and moments agree within the out-of-plane part, (γ_j − γ)²/2 of Fy with the strips'
-/// angles γ_j a few hundredths of a radian from the patch's on the tread (2 % of the force's
-/// magnitude allowed).
+/// forces) and the forces their sum. Hertz patches and planar strip patches: the forces to
+/// round-off (a reported patch's force is the whole force of its region decomposed in its axes);
+/// the moments to round-off where a reported patch is one internal patch, and within the lever
+/// of its pieces about its load centre where it combines several (a two-lobe region, 2.5 N·m
+/// of 41 kN·m at 6.5 mm: 1e−4 allowed). Non-planar strip patches sum each strip's force in its
+/// own axes, and `pk.Fy` is only the component along the patch's e_y: their forces and moments
+/// agree within the out-of-plane part, (γ_j − γ)²/2 of Fy with the strips' angles γ_j a few
+/// hundredths of a radian from the patch's on the tread (2 % of the force's magnitude allowed).
 #[test]
 fn moments_are_the_patch_forces_at_their_positions() {
-    for (model, planar, tolerance) in [(1, true, 1e-9), (6, true, 1e-9), (2, false, 2e-2)] {
+    for (model, planar, force_tolerance, moment_tolerance) in [
+        (1, true, 1e-9, 1e-4),
+        (6, true, 1e-9, 1e-4),
+        (2, false, 2e-2, 2e-2),
+    ] {
         for (i, pose) in poses().into_iter().enumerate() {
             let name = format!("wrench{model}{planar}{i}");
             let f = instance(&name, &[("normalModel", model)], planar, &pose);
@@ -127,13 +133,13 @@ fn moments_are_the_patch_forces_at_their_positions() {
                 let what = format!("model {model} planar {planar} pose {pose:?} {side}");
                 for k in 0..3 {
                     assert!(
-                        (force[k] - f_sum[k]).abs() <= tolerance * norm(force),
+                        (force[k] - f_sum[k]).abs() <= force_tolerance * norm(force),
                         "{what}: F[{k}] {} vs patches {}",
                         force[k],
                         f_sum[k]
                     );
                     assert!(
-                        (moment[k] - m_sum[k]).abs() <= tolerance * scale,
+                        (moment[k] - m_sum[k]).abs() <= moment_tolerance * scale,
                         "{what}: M[{k}] {} vs patches {}",
                         moment[k],
                         m_sum[k]

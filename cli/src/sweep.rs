@@ -33,7 +33,7 @@ struct SideRow {
 
 enum Row {
     /// The outputs, and the warning of an implausible state.
-    Values([SideRow; 2], Option<String>),
+    Values(Box<[SideRow; 2]>, Option<String>),
     Note(String),
 }
 
@@ -96,7 +96,7 @@ pub fn sweep(mut values: Values, range: SweepRange) -> Result<(String, SweepOutc
                     }
                 };
                 Row::Values(
-                    [side_row(&values, "left")?, side_row(&values, "right")?],
+                    Box::new([side_row(&values, "left")?, side_row(&values, "right")?]),
                     warning,
                 )
             }

@@ -212,7 +212,8 @@ impl Basins {
 /// peak where all its pieces are whole), and across parts their mean weighted by normal force.
 fn aggregate(sigma: f64, items: &[(PatchResult, f64, usize)]) -> PatchResult {
     let mut out = PatchResult::default();
-    let (mut normal, mut tangential) = (Vector3::zeros(), Vector3::zeros());
+    // The normal forces' resultant and the whole force on the wheel (−Fn e_z + Fx e_x + Fy e_y).
+    let (mut normal, mut force) = (Vector3::zeros(), Vector3::zeros());
     let (mut area_adhesion, mut position) = (0.0, Vector3::zeros());
     let mut part_peak = [0.0_f64; MAX_GROUPS];
     let mut part_load = [0.0; MAX_GROUPS];
@@ -222,7 +223,7 @@ fn aggregate(sigma: f64, items: &[(PatchResult, f64, usize)]) -> PatchResult {
         part_load[part] += fn_;
         let (e_y, e_z) = contact_axes(sigma, p.contact_angle);
         normal += e_z * fn_;
-        tangential += Vector3::new(f * p.fx, 0.0, 0.0) + e_y * (f * p.fy);
+        force += Vector3::new(f * p.fx, 0.0, 0.0) + e_y * (f * p.fy) - e_z * fn_;
         out.fn_ += fn_;
         out.mz += f * p.mz;
         out.area += f * p.area;
@@ -277,11 +278,13 @@ fn aggregate(sigma: f64, items: &[(PatchResult, f64, usize)]) -> PatchResult {
     if out.area > 0.0 {
         out.adhesion_fraction = area_adhesion / out.area;
     }
-    // The normal forces' resultant gives the angle (e_z = (0, σ sin γ, cos γ)).
+    // The normal forces' resultant gives the angle (e_z = (0, σ sin γ, cos γ)); the whole force
+    // is decomposed in the patch's axes, so that the reported patches' forces sum to the wheel's.
     out.contact_angle = (sigma * normal.y).atan2(normal.z);
-    let (e_y, _) = contact_axes(sigma, out.contact_angle);
-    out.fx = tangential.x;
-    out.fy = tangential.dot(&e_y);
+    let (e_y, e_z) = contact_axes(sigma, out.contact_angle);
+    out.fn_ = -force.dot(&e_z);
+    out.fx = force.x;
+    out.fy = force.dot(&e_y);
     out.weight = 1.0;
     out
 }
@@ -550,8 +553,8 @@ pub(super) fn report(side: &mut Side, input: &WheelsetInput, planar: bool, out: 
         }
         let (a, b) = (cluster_of[k], cluster_of[k + 1]);
         let gives_b = lighter_gives(own_load[a], own_load[b], c);
-        for i in 0..all.len() {
-            let (held_a, held_b) = (amount[a][i], amount[b][i]);
+        let (row_a, row_b) = (amount[a], amount[b]);
+        for (i, (held_a, held_b)) in row_a.iter().zip(&row_b).enumerate().take(all.len()) {
             amount[a][i] = held_a * (1.0 - c * (1.0 - gives_b)) + held_b * c * gives_b;
             amount[b][i] = held_b * (1.0 - c * gives_b) + held_a * c * (1.0 - gives_b);
         }
@@ -563,11 +566,10 @@ pub(super) fn report(side: &mut Side, input: &WheelsetInput, planar: bool, out: 
         pieces_of_part[p.part] += 1;
     }
     let mut dominant = [0usize; MAX_REGIONS];
-    for c in 0..clusters {
+    for held in &amount[..clusters] {
         let mut m = 0;
         let mut heaviest = (0.0, 0);
-        for (i, p) in all.iter().enumerate() {
-            let f = amount[c][i];
+        for (p, &f) in all.iter().zip(held) {
             if f > 0.0 {
                 items[m] = (p.result, f, p.part);
                 m += 1;
