@@ -61,10 +61,7 @@ pub(super) fn evaluate_side(
     out: &mut SideResult,
     tangential: Tangential,
 ) -> Result<f64, InputError> {
-    *out = SideResult {
-        z: dz,
-        ..SideResult::default()
-    };
+    out.clear(dz);
     let (layout, candidates, m) = groups_at(
         &mut side.geometry,
         merge_level,
@@ -112,10 +109,7 @@ pub(super) fn complete_ellipses(
     out: &mut SideResult,
     mut tangential: Tangential,
 ) -> Result<f64, InputError> {
-    *out = SideResult {
-        z: out.z,
-        ..SideResult::default()
-    };
+    out.clear(out.z);
     let mut upward = 0.0;
     for k in 0..side.n_ellipses {
         let (reference, patch, weight, key, bounds) = side.ellipses[k];
@@ -292,10 +286,7 @@ pub(super) fn hertz_side(
     };
     if q == 0.0 {
         // Lift-off: the wheel just touches; no force.
-        *out = SideResult {
-            z: touch,
-            ..SideResult::default()
-        };
+        out.clear(touch);
         return Ok((None, f64::NAN));
     }
     // First approach: a Hertzian estimate for the deepest point alone.

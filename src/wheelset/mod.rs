@@ -275,6 +275,19 @@ impl SideResult {
     pub fn all_patches(&self) -> &[PatchResult] {
         &self.regions[..self.n_regions]
     }
+
+    /// Empties the result for a new evaluation at the lowering `z` [m]: no patch, no force. The
+    /// patch arrays are left as they are (read only up to their counts; the output slots are
+    /// written whole by [`regions::report`]), which spares clearing some 4 kB per evaluation.
+    fn clear(&mut self, z: f64) {
+        self.n_patches = 0;
+        self.n_regions = 0;
+        self.n_groups = 0;
+        self.force = [0.0; 3];
+        self.moment = [0.0; 3];
+        self.derailment_quotient = 0.0;
+        self.z = z;
+    }
 }
 
 /// Both wheels.
@@ -369,6 +382,8 @@ struct Side {
     /// The patches in the output slots after the last solve: their `y_rail` (the identity
     /// matched in the next step) and their index in `SideResult::groups`.
     slots: [Option<Slot>; MAX_PATCHES],
+    /// Buffers of the reported patches ([`regions::report`]; taken while it runs).
+    scratch: Option<Box<regions::Scratch>>,
 }
 
 /// A wheelset contact solver; owns every buffer, so [`Wheelset::solve`] does not allocate.
@@ -440,6 +455,7 @@ impl Wheelset {
                 strip_of_group: [None; MAX_GROUPS],
                 part_bounds: [(0.0, 0.0); MAX_GROUPS],
                 slots: [None; MAX_PATCHES],
+                scratch: Some(Box::default()),
             })
         };
         Ok(Self {

@@ -74,6 +74,27 @@ pub struct Slot {
     pub group: usize,
 }
 
+/// Pieces a wheel's parts can be cut into: every part in every basin.
+const MAX_PIECES: usize = MAX_REGIONS * MAX_GROUPS;
+
+/// Buffers of [`report`], kept with the wheel so that a step writes only what it uses (about
+/// 15 kB, which clearing on every step would cost more than the rest of the report).
+#[derive(Debug, Clone)]
+pub(super) struct Scratch {
+    pieces: [Piece; MAX_PIECES],
+    /// `amount[c][i]`: the fraction of piece i that reported patch (cluster) c carries.
+    amount: [[f64; MAX_PIECES]; MAX_REGIONS],
+}
+
+impl Default for Scratch {
+    fn default() -> Self {
+        Self {
+            pieces: [Piece::default(); MAX_PIECES],
+            amount: [[0.0; MAX_PIECES]; MAX_REGIONS],
+        }
+    }
+}
+
 /// One part's share in one basin.
 #[derive(Debug, Clone, Copy, Default)]
 struct Piece {
@@ -207,17 +228,18 @@ impl Basins {
     }
 }
 
-/// The sum of `items` (each a piece's result, its factor and its part): see the module
+/// The sum of `items` (each a piece of `pieces` and its factor): see the module
 /// documentation. The peak pressure is, per part, the largest factor × piece peak (the part's own
 /// peak where all its pieces are whole), and across parts their mean weighted by normal force.
-fn aggregate(sigma: f64, items: &[(PatchResult, f64, usize)]) -> PatchResult {
+fn aggregate(sigma: f64, pieces: &[Piece], items: &[(usize, f64)]) -> PatchResult {
     let mut out = PatchResult::default();
     // The normal forces' resultant and the whole force on the wheel (−Fn e_z + Fx e_x + Fy e_y).
     let (mut normal, mut force) = (Vector3::zeros(), Vector3::zeros());
     let (mut area_adhesion, mut position) = (0.0, Vector3::zeros());
     let mut part_peak = [0.0_f64; MAX_GROUPS];
     let mut part_load = [0.0; MAX_GROUPS];
-    for &(p, f, part) in items {
+    for &(i, f) in items {
+        let (p, part) = (pieces[i].result, pieces[i].part);
         let fn_ = f * p.fn_;
         part_peak[part] = part_peak[part].max(f * p.pmax);
         part_load[part] += fn_;
@@ -296,7 +318,7 @@ fn pieces(
     planar: bool,
     basins: &Basins,
     out: &SideResult,
-    pieces: &mut [Piece; MAX_REGIONS * MAX_GROUPS],
+    pieces: &mut [Piece; MAX_PIECES],
 ) -> usize {
     let mut count = 0;
     let mut shares = [0.0; MAX_CANDIDATES];
@@ -486,18 +508,24 @@ fn scaled(r: &PatchResult, share: f64) -> PatchResult {
 /// assigns the output slots (`side.slots` updated): the module documentation.
 pub(super) fn report(side: &mut Side, input: &WheelsetInput, planar: bool, out: &mut SideResult) {
     out.n_regions = 0;
-    out.regions = [PatchResult::default(); MAX_REGIONS];
     out.patches = [PatchResult::default(); MAX_PATCHES];
     out.n_patches = 0;
     if out.n_groups == 0 {
         side.slots = [None; MAX_PATCHES];
+        clear_tails(out);
         return;
     }
     // The gap below the lowering sampled exactly (the iterations usually have already).
     side.geometry.fill_to_level(out.z);
     let basins = Basins::of(side, out.z);
-    let mut all = [Piece::default(); MAX_REGIONS * MAX_GROUPS];
-    let n = pieces(side, input, planar, &basins, out, &mut all);
+    let Some(mut scratch) = side.scratch.take() else {
+        return;
+    };
+    let n = pieces(side, input, planar, &basins, out, &mut scratch.pieces);
+    let Scratch {
+        pieces: all,
+        amount,
+    } = &mut *scratch;
     let all = &all[..n];
     // Each basin's own load and centre.
     let mut load = [0.0; MAX_CANDIDATES];
@@ -537,7 +565,9 @@ pub(super) fn report(side: &mut Side, input: &WheelsetInput, planar: bool, out: 
     }
     let clusters = clusters + 1;
     // Amount of every piece in every cluster, before the partial links' flows.
-    let mut amount = [[0.0; MAX_REGIONS * MAX_GROUPS]; MAX_REGIONS];
+    for row in &mut amount[..clusters] {
+        row[..n].fill(0.0);
+    }
     let mut own_load = [0.0; MAX_REGIONS];
     for (i, p) in all.iter().enumerate() {
         let c = cluster_of[p.basin];
@@ -560,7 +590,7 @@ pub(super) fn report(side: &mut Side, input: &WheelsetInput, planar: bool, out: 
         }
     }
     // The reported patches.
-    let mut items = [(PatchResult::default(), 0.0, 0); MAX_REGIONS * MAX_GROUPS];
+    let mut items = [(0usize, 0.0); MAX_PIECES];
     let mut pieces_of_part = [0usize; MAX_GROUPS];
     for p in all {
         pieces_of_part[p.part] += 1;
@@ -569,9 +599,9 @@ pub(super) fn report(side: &mut Side, input: &WheelsetInput, planar: bool, out: 
     for held in &amount[..clusters] {
         let mut m = 0;
         let mut heaviest = (0.0, 0);
-        for (p, &f) in all.iter().zip(held) {
+        for (i, (p, &f)) in all.iter().zip(held).enumerate() {
             if f > 0.0 {
-                items[m] = (p.result, f, p.part);
+                items[m] = (i, f);
                 m += 1;
                 if f * p.result.fn_ >= heaviest.0 {
                     heaviest = (f * p.result.fn_, p.part);
@@ -582,16 +612,18 @@ pub(super) fn report(side: &mut Side, input: &WheelsetInput, planar: bool, out: 
             continue;
         }
         // One part whole (all its pieces, nothing moved): reported as it is.
-        let part = items[0].2;
-        let whole =
-            items[..m].iter().all(|&(_, f, q)| q == part && f == 1.0) && m == pieces_of_part[part];
+        let part = all[items[0].0].part;
+        let whole = items[..m]
+            .iter()
+            .all(|&(i, f)| all[i].part == part && f == 1.0)
+            && m == pieces_of_part[part];
         let region = if whole {
             PatchResult {
                 weight: 1.0,
                 ..out.groups[part]
             }
         } else {
-            aggregate(side.sigma, &items[..m])
+            aggregate(side.sigma, all, &items[..m])
         };
         if region.fn_ <= 0.0 {
             continue;
@@ -637,6 +669,22 @@ pub(super) fn report(side: &mut Side, input: &WheelsetInput, planar: bool, out: 
         out.n_patches += 1;
     }
     side.slots = next;
+    side.scratch = Some(scratch);
+    clear_tails(out);
+}
+
+/// Zeroes the internal and reported patches beyond their counts (the evaluations of a step leave
+/// what they do not overwrite), so that a result depends on its step alone.
+fn clear_tails(out: &mut SideResult) {
+    // Every written entry has a positive weight.
+    for p in out.groups[out.n_groups..]
+        .iter_mut()
+        .chain(&mut out.regions[out.n_regions..])
+    {
+        if p.weight != 0.0 {
+            *p = PatchResult::default();
+        }
+    }
 }
 
 /// Relative load difference of two partly combined patches below which both give to each other,

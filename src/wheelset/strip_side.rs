@@ -500,10 +500,7 @@ pub(super) fn evaluate_strips(
     out: &mut SideResult,
     mut tangential: Tangential,
 ) -> Result<f64, InputError> {
-    *out = SideResult {
-        z: dz,
-        ..SideResult::default()
-    };
+    out.clear(dz);
     let Some(strips) = side.strips.take() else {
         return Ok(0.0);
     };
