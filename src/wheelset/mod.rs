@@ -6,7 +6,8 @@
 //! 1. rigid contact search ([`crate::geometry::search`]) gives the gap function, its minima and
 //!    the ridges between them;
 //! 2. the minima form patch groups with continuous weights ([`crate::geometry::groups`],
-//!    docs/theory.md §7.7), at most [`MAX_PATCHES`] shown in the output slots (`slots`);
+//!    docs/theory.md §7.7); the outputs report one patch per contact region, at most
+//!    [`MAX_PATCHES`] in the output slots ([`regions`]);
 //! 3. `normalModel` 1 (`hertz_side`): each group is one Hertz ellipse, with its reference point
 //!    at the centroid of the interpenetration above 0.8 of the group's depth (where `yRail`, the
 //!    contact angle and the rolling radius are taken) and its lateral curvature from the spread of
