@@ -15,44 +15,21 @@ mod common;
 
 use common::builtin_wheelset_with;
 use railcontact::normal::NormalModel;
-use railcontact::tangential::fastsim::Creepage;
 use railcontact::tangential::patch::TangentialModel;
-use railcontact::wheelset::{
-    Creepages, PatchResult, Vertical, Wheelset, WheelsetInput, WheelsetResult,
-};
+use railcontact::wheelset::{Creepages, PatchResult, Wheelset, WheelsetResult};
 
 const Q: f64 = 78_500.0;
 
 fn wheelset(model: NormalModel, planar: bool, tangential: TangentialModel) -> Wheelset {
-    builtin_wheelset_with(|s| {
-        s.normal_model = model;
-        s.planar_patch = planar;
-        s.tangential = tangential;
-    })
+    builtin_wheelset_with(common::patch_options(model, tangential, planar))
 }
 
 fn solve(ws: &mut Wheelset, y: f64, yaw: f64, creepages: Creepages) -> WheelsetResult {
-    let input = WheelsetInput {
-        y,
-        yaw,
-        roll: 0.0,
-        vertical: Vertical::Loads { left: Q, right: Q },
-        creepages,
-    };
-    let mut out = WheelsetResult::default();
-    ws.solve(&input, &mut out)
-        .unwrap_or_else(|e| panic!("y {y} yaw {yaw}: {e}"));
-    out
+    common::solve_pose(ws, y, yaw, Q, creepages)
 }
 
-const AT_REST: Creepages = Creepages::Prescribed {
-    creepage: Creepage {
-        xi: 0.0,
-        eta: 0.0,
-        phi: 0.0,
-    },
-    vx: 30.0,
-};
+/// Zero creepage, prescribed at 30 m/s.
+const AT_REST: Creepages = common::at_rest(30.0);
 
 /// Poses from the tread to the flange root and flange, with and without yaw: (y [m], yaw [rad]).
 fn poses() -> Vec<(f64, f64)> {

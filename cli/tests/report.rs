@@ -14,12 +14,12 @@
 #[path = "../../tests/common/mod.rs"]
 mod common;
 
-use common::{benchmark_wheelset_with, data_dir, data_file, read_csv};
+use common::{benchmark_wheelset_with, data_dir, data_file, patch_options, read_csv, solve_pose};
 use railcontact::material::Material;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::Creepage;
 use railcontact::tangential::patch::TangentialModel;
-use railcontact::wheelset::{Creepages, Vertical, WheelsetInput, WheelsetResult};
+use railcontact::wheelset::{Creepages, WheelsetResult};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -192,21 +192,8 @@ fn solve(
     planar: bool,
     creepages: Creepages,
 ) -> WheelsetResult {
-    let mut ws = benchmark_wheelset_with(material(), |s| {
-        s.normal_model = model;
-        s.tangential = tangential;
-        s.planar_patch = planar;
-    });
-    let input = WheelsetInput {
-        y: 0.0,
-        yaw: 0.0,
-        roll: 0.0,
-        vertical: Vertical::Loads { left: Q, right: Q },
-        creepages,
-    };
-    let mut out = WheelsetResult::default();
-    ws.solve(&input, &mut out).expect("central case solves");
-    out
+    let mut ws = benchmark_wheelset_with(material(), patch_options(model, tangential, planar));
+    solve_pose(&mut ws, 0.0, 0.0, Q, creepages)
 }
 
 const ROLLING: Creepages = Creepages::Kinematic {

@@ -27,6 +27,7 @@
 use railcontact::geometry::search::{StripPoints, WheelOnRail};
 use railcontact::geometry::strips::{StripGeometry, MAX_STRIPS};
 use railcontact::normal::hertz::contact_modulus;
+use railcontact::wheelset::SideResult;
 
 use crate::{solve, solve_rolling_with_slip, Grid, Rolling, Solution, SolveError};
 
@@ -103,6 +104,45 @@ pub fn planar_reference(geometry: &WheelOnRail, dz: f64) -> Option<PlanarReferen
             depth: deepest,
         }
     })
+}
+
+/// The grid of square elements of side `element` [m] on the strips' rows: `ny` rows from the
+/// in-plane lateral `y0` [m], and the fewest columns that cover 2 `half_x` [m], centred on the
+/// longitudinal position `x_mid` [m].
+pub fn strip_grid(element: f64, ny: usize, y0: f64, half_x: f64, x_mid: f64) -> Grid {
+    let nx = (2.0 * half_x / element).ceil() as usize;
+    Grid {
+        nx,
+        ny,
+        dx: element,
+        dy: element,
+        x0: x_mid - 0.5 * nx as f64 * element,
+        y0,
+    }
+}
+
+/// The undeformed gap of the strips `geom` on `grid`, one grid row a strip, row after row:
+/// h(x_i, s_j) = f_j − `base` + A_j (x_i − x_c,j)² [m], with f_j the strip's lowest gap, A_j its
+/// longitudinal curvature [1/m] and x_c,j the position of its lowest point [m].
+pub fn strip_gap(geom: &StripGeometry, grid: &Grid, base: f64) -> Vec<f64> {
+    (0..grid.ny)
+        .flat_map(|j| {
+            (0..grid.nx)
+                .map(move |i| geom.f[j] - base + geom.curv_a[j] * (grid.x(i) - geom.x_c[j]).powi(2))
+        })
+        .collect()
+}
+
+/// A model's creep force on one wheel in track axes, to set against [`CreepForces`]: the
+/// wheel's longitudinal force, and its lateral force less its patches' normal forces along
+/// their normals (−σ N sin γ each) on side `sigma` (+1 right, −1 left); (x, y) [N].
+pub fn model_creep_force(side: &SideResult, sigma: f64) -> (f64, f64) {
+    let normal_y: f64 = side
+        .all_patches()
+        .iter()
+        .map(|p| -sigma * p.fn_ * p.contact_angle.sin())
+        .sum();
+    (side.force[0], side.force[1] - normal_y)
 }
 
 /// The roll angle of the geometry's pose (wheelset frame less track frame) [rad].
@@ -201,24 +241,8 @@ impl ExactWheel {
                 .filter(|a| *a > 0.0)
                 .fold(f64::INFINITY, f64::min);
             let half_x = (reference.depth / curv_a).sqrt().min(0.05) + MARGIN;
-            let x_mid = geom.x_c[ny / 2];
-            let nx = (2.0 * half_x / element).ceil() as usize;
-            let grid = Grid {
-                nx,
-                ny,
-                dx: element,
-                dy: element,
-                x0: x_mid - 0.5 * nx as f64 * element,
-                y0: s_lo,
-            };
-            let gap: Vec<f64> = (0..ny)
-                .flat_map(|j| {
-                    let (geom, grid) = (&geom, &grid);
-                    (0..nx).map(move |i| {
-                        geom.f[j] - f_min + geom.curv_a[j] * (grid.x(i) - geom.x_c[j]).powi(2)
-                    })
-                })
-                .collect();
+            let grid = strip_grid(element, ny, s_lo, half_x, geom.x_c[ny / 2]);
+            let gap = strip_gap(&geom, &grid, f_min);
             let normal_force = load / reference.angle.cos();
             let solution = solve(
                 &grid,

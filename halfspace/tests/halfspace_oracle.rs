@@ -29,7 +29,8 @@ use railcontact::normal::hertz::contact_modulus;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::Creepage;
 use railcontact::tangential::patch::TangentialModel;
-use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult};
+use railcontact::wheelset::{Creepages, Wheelset, WheelsetResult};
+use railcontact_halfspace::wheel_rail::{strip_gap, strip_grid};
 use railcontact_halfspace::{solve, solve_rolling, Grid, Rolling, Solution, Target};
 
 use common::benchmark_wheelset;
@@ -114,22 +115,8 @@ fn exact_normal(
         &mut points,
     );
     let half_x = 0.75 * summary.length + 1e-3;
-    let nx = (2.0 * half_x / element).ceil() as usize;
-    let grid = Grid {
-        nx,
-        ny,
-        dx: element,
-        dy: element,
-        x0: -(nx as f64) * element / 2.0,
-        y0: lo,
-    };
-    let gap: Vec<f64> = (0..ny)
-        .flat_map(|j| {
-            let geom = &geom;
-            let grid = &grid;
-            (0..nx).map(move |i| geom.f[j] + geom.curv_a[j] * (grid.x(i) - geom.x_c[j]).powi(2))
-        })
-        .collect();
+    let grid = strip_grid(element, ny, lo, half_x, 0.0);
+    let gap = strip_gap(&geom, &grid, 0.0);
     let exact = solve(
         &grid,
         &gap,
@@ -278,23 +265,13 @@ fn exact_rolling(o: &ExactNormal, creepage: Creepage) -> (f64, f64) {
     (sol.fx / mu_n, sol.fy / mu_n)
 }
 
-/// Whether the rolling comparisons run: their dense Newton systems take minutes in a debug
-/// build; `tests/run_all.sh` runs this file in a release build.
-fn rolling_oracle_runs() -> bool {
-    if cfg!(debug_assertions) {
-        eprintln!("the rolling comparisons run in release builds (tests/run_all.sh)");
-        return false;
-    }
-    true
-}
-
 #[test]
 fn exact_rolling_reproduces_contact_creep_curves() {
     // CONTACT's creep curves of the central case (pure ξ and η, and with the spin of pure
     // rolling) against the rolling oracle on the oracle's own exact pressure: within 1.5 % of μN
     // at every point (measured 0.86 %, at ξ = 2e−3: the oracle's 0.5 mm elements against
     // CONTACT's 0.2 mm; first order in the element size).
-    if !rolling_oracle_runs() {
+    if !common::rolling_comparisons_run() {
         return;
     }
     let rows = common::read_csv("reference/central/creep_curves_dy0.csv");
@@ -344,11 +321,10 @@ fn coupled_creep_curves_against_the_oracle(
     let mut wheelsets: Vec<Wheelset> = CREEP_OPTIONS
         .iter()
         .map(|&t| {
-            common::benchmark_wheelset_with(material, |s| {
-                s.normal_model = NormalModel::CoupledStrips;
-                s.tangential = t;
-                s.planar_patch = true;
-            })
+            common::benchmark_wheelset_with(
+                material,
+                common::patch_options(NormalModel::CoupledStrips, t, true),
+            )
         })
         .collect();
     let steps = [5e-4, 1e-3, 2e-3, 5e-3, 1e-2];
@@ -438,16 +414,8 @@ fn coupled_creep_curves_against_the_oracle(
 /// The solution of `ws` at lateral shift `y` [m] and yaw `yaw` [rad], 78.5 kN per wheel, with
 /// `creepage` prescribed.
 fn solve_pose(ws: &mut Wheelset, y: f64, yaw: f64, creepage: Creepage) -> WheelsetResult {
-    let input = WheelsetInput {
-        y,
-        yaw,
-        roll: 0.0,
-        vertical: Vertical::Loads { left: Q, right: Q },
-        creepages: Creepages::Prescribed { creepage, vx: 2.0 },
-    };
-    let mut out = WheelsetResult::default();
-    ws.solve(&input, &mut out).expect("solve");
-    out
+    let creepages = Creepages::Prescribed { creepage, vx: 2.0 };
+    common::solve_pose(ws, y, yaw, Q, creepages)
 }
 
 /// The right wheel's first patch of [`solve_pose`].
@@ -471,7 +439,7 @@ fn coupled_strips_creep_curves_against_the_exact_solution() {
     // CONTACT's 0.2 mm, `exact_rolling_reproduces_contact_creep_curves`). Option 3's bounds are
     // its measured figures with 0.5 % of μN for the oracle's error, so that a change that makes
     // them worse fails here.
-    if !rolling_oracle_runs() {
+    if !common::rolling_comparisons_run() {
         return;
     }
     let summary = coupled_creep_curves_against_the_oracle(&[(0.0, 0.0), (2e-3, 0.0), (2e-3, 4e-3)]);

@@ -22,10 +22,11 @@ mod common;
 
 use railcontact::material::Material;
 use railcontact::normal::NormalModel;
-use railcontact::tangential::fastsim::Creepage;
 use railcontact::tangential::patch::TangentialModel;
-use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult};
-use railcontact_halfspace::wheel_rail::{planar_reference, ExactWheel, WheelsetMotion};
+use railcontact::wheelset::{Creepages, Wheelset, WheelsetResult};
+use railcontact_halfspace::wheel_rail::{
+    model_creep_force, planar_reference, ExactWheel, WheelsetMotion,
+};
 
 const Q: f64 = 78_500.0;
 const E: f64 = 210e9;
@@ -46,36 +47,16 @@ fn wheelset_with(model: NormalModel, planar: bool, tangential: TangentialModel) 
         poisson_ratio: NU,
         friction: MU,
     };
-    common::benchmark_wheelset_with(material, |s| {
-        s.normal_model = model;
-        s.planar_patch = planar;
-        s.tangential = tangential;
-    })
+    common::benchmark_wheelset_with(material, common::patch_options(model, tangential, planar))
 }
 
 /// The solution at lateral shift `y` [m] and yaw `yaw` [rad] with `creepages`.
 fn solve(ws: &mut Wheelset, y: f64, yaw: f64, creepages: Creepages) -> WheelsetResult {
-    let input = WheelsetInput {
-        y,
-        yaw,
-        roll: 0.0,
-        vertical: Vertical::Loads { left: Q, right: Q },
-        creepages,
-    };
-    let mut out = WheelsetResult::default();
-    ws.solve(&input, &mut out).expect("solve");
-    out
+    common::solve_pose(ws, y, yaw, Q, creepages)
 }
 
-/// Zero creepage, prescribed.
-const AT_REST: Creepages = Creepages::Prescribed {
-    creepage: Creepage {
-        xi: 0.0,
-        eta: 0.0,
-        phi: 0.0,
-    },
-    vx: 2.0,
-};
+/// Zero creepage, prescribed at 2 m/s.
+const AT_REST: Creepages = common::at_rest(2.0);
 
 /// The right wheel's lateral force towards its field side (−Fy on the right wheel) [N].
 fn lateral(out: &WheelsetResult) -> f64 {
@@ -236,15 +217,6 @@ fn planar_contact_angle_is_the_rule_of_the_exact_theory() {
     }
 }
 
-/// Release builds only: the rolling oracle's dense Newton systems.
-fn rolling_runs() -> bool {
-    if cfg!(debug_assertions) {
-        eprintln!("the rolling comparisons run in release builds (tests/run_all.sh)");
-        return false;
-    }
-    true
-}
-
 #[test]
 fn curved_creep_forces_against_the_exact_rolling_solution() {
     // Kinematic creepages at 2 m/s over −1…+4 mm: pure rolling (ω = V/r0, r0 = 0.46 m) and
@@ -255,7 +227,7 @@ fn curved_creep_forces_against_the_exact_rolling_solution() {
     // μN — measured: FASTSIM (1, 2) 2.2 %, FaStrip (3) 4.9 %, FASTSIM on local ellipses (4)
     // 6.5 %, FaStrip with coupled coefficients (5) 2.6 %. Bounds: 5 % for options 1, 2, 3 and 5
     // (4's STRIPES flexibilities: 8 %), the best within 2.5 %.
-    if !rolling_runs() {
+    if !common::rolling_comparisons_run() {
         return;
     }
     let options = TangentialModel::ALL;
@@ -292,7 +264,7 @@ fn curved_creep_forces_against_the_exact_rolling_solution() {
             );
             for (k, ws) in models.iter_mut().enumerate() {
                 let out = solve(ws, y_mm * 1e-3, 0.0, creepages);
-                let (fx, fy) = creep_force(&out);
+                let (fx, fy) = model_creep_force(&out.right, 1.0);
                 let d = ((fx - e.fx) / e.mu_n)
                     .abs()
                     .max(((fy - e.fy) / e.mu_n).abs());
@@ -312,16 +284,4 @@ fn curved_creep_forces_against_the_exact_rolling_solution() {
         assert!(w < bound, "{}: {w}", t.name());
     }
     assert!(worst.iter().copied().fold(f64::INFINITY, f64::min) < 0.025);
-}
-
-/// The right wheel's creep force in track axes (x, y): its force less its patches' normal
-/// forces along their normals [N].
-fn creep_force(out: &WheelsetResult) -> (f64, f64) {
-    let side = &out.right;
-    let normal_y: f64 = side
-        .all_patches()
-        .iter()
-        .map(|p| -p.fn_ * p.contact_angle.sin())
-        .sum();
-    (side.force[0], side.force[1] - normal_y)
 }

@@ -9,7 +9,10 @@ use railcontact::geometry::track::TrackSetup;
 use railcontact::material::Material;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::{Creepage, EllipticContact};
-use railcontact::wheelset::{Creepages, Vertical, Wheelset, WheelsetInput, WheelsetSettings};
+use railcontact::tangential::patch::TangentialModel;
+use railcontact::wheelset::{
+    Creepages, Vertical, Wheelset, WheelsetInput, WheelsetResult, WheelsetSettings,
+};
 
 /// The vendored test data: `tests/data` of the repository root (profiles and reference
 /// solutions, see its README). This module is also included by other workspace members (e.g.
@@ -62,6 +65,73 @@ pub fn benchmark_wheelset_with(
         settings,
     )
     .expect("benchmark wheelset")
+}
+
+/// The settings' adjustment (for [`benchmark_wheelset_with`] and [`builtin_wheelset_with`]) to
+/// the normal model `model`, the tangential option `tangential` and planar (`planar`) or
+/// non-planar patches.
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub fn patch_options(
+    model: NormalModel,
+    tangential: TangentialModel,
+    planar: bool,
+) -> impl FnOnce(&mut WheelsetSettings) {
+    move |s| {
+        s.normal_model = model;
+        s.tangential = tangential;
+        s.planar_patch = planar;
+    }
+}
+
+/// Zero creepage (ξ = η = 0, φ = 0 1/m) prescribed at the rolling speed `vx` [m/s].
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub const fn at_rest(vx: f64) -> Creepages {
+    Creepages::Prescribed {
+        creepage: Creepage {
+            xi: 0.0,
+            eta: 0.0,
+            phi: 0.0,
+        },
+        vx,
+    }
+}
+
+/// The solution of `ws` at lateral shift `y` [m] and yaw `yaw` [rad], no roll, with the vertical
+/// load `load` [N] on each wheel and `creepages`; fails naming the pose when the solve fails.
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub fn solve_pose(
+    ws: &mut Wheelset,
+    y: f64,
+    yaw: f64,
+    load: f64,
+    creepages: Creepages,
+) -> WheelsetResult {
+    let input = WheelsetInput {
+        y,
+        yaw,
+        roll: 0.0,
+        vertical: Vertical::Loads {
+            left: load,
+            right: load,
+        },
+        creepages,
+    };
+    let mut out = WheelsetResult::default();
+    ws.solve(&input, &mut out)
+        .unwrap_or_else(|e| panic!("y {y} yaw {yaw}: {e}"));
+    out
+}
+
+/// Whether the comparisons with the exact rolling solution run: their dense Newton systems take
+/// minutes in a debug build, so in release builds only (`tests/run_all.sh`); otherwise says so
+/// on stderr.
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub fn rolling_comparisons_run() -> bool {
+    if cfg!(debug_assertions) {
+        eprintln!("the rolling comparisons run in release builds (tests/run_all.sh)");
+        return false;
+    }
+    true
 }
 
 /// Steel as the built-in-profile set-ups use it: E = 210 GPa, ν = 0.28, μ = 0.3.

@@ -30,7 +30,7 @@ use railcontact::models::wheel_rail_contact::{generated::var, INFO};
 use railcontact::normal::NormalModel;
 use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::{SideResult, WheelsetResult};
-use railcontact_halfspace::wheel_rail::{ExactWheel, WheelsetMotion};
+use railcontact_halfspace::wheel_rail::{model_creep_force, ExactWheel, WheelsetMotion};
 use std::fmt::Write as _;
 
 /// Lateral shifts of the lateral-force tables [mm].
@@ -419,14 +419,9 @@ fn creep_table(study: &Study) -> Result<String, Failure> {
             let (mut worst, mut sum): (f64, f64) = (0.0, 0.0);
             for (&(y_mm, c), e) in cases.iter().zip(&exact_forces) {
                 let out = kinematic(&mut runner, y_mm * 1e-3, c)?;
-                let side = &out.right;
-                let normal_y: f64 = side
-                    .all_patches()
-                    .iter()
-                    .map(|p| -p.fn_ * p.contact_angle.sin())
-                    .sum();
-                let dx = ((side.force[0] - e.fx) / e.mu_n).abs();
-                let dy = ((side.force[1] - normal_y - e.fy) / e.mu_n).abs();
+                let (fx, fy) = model_creep_force(&out.right, 1.0);
+                let dx = ((fx - e.fx) / e.mu_n).abs();
+                let dy = ((fy - e.fy) / e.mu_n).abs();
                 worst = worst.max(dx.max(dy));
                 sum += dx + dy;
             }
