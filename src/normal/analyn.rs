@@ -154,21 +154,16 @@ impl StripModel for Analyn {
 mod tests {
     use super::*;
     use crate::geometry::strips::MAX_STRIPS;
-    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
     use crate::normal::test_support::{
-        self, assert_continuous_sweep, awkward_geometries, awkward_geometry, no_nan, table,
-        AWKWARD_DELTAS, AWKWARD_HALF_WIDTH, SECOND_MINIMUM,
+        self, assert_continuous_sweep, awkward_geometries, awkward_geometry, hertz_case, no_nan,
+        table, AWKWARD_DELTAS, AWKWARD_HALF_WIDTH, CURV_B, DELTA, SECOND_MINIMUM,
     };
 
     /// Per-strip tolerance against exact Hertz, normalised by a² or p0: the table's 1e−7
     /// relative accuracy of ε_x and P (strips.rs), amplified at most a few times by
     /// δ_loc = δ − f/ε_y (two terms of size ≤ δ).
     const TABLE_TOL: f64 = 1e-6;
-    /// Lateral curvature of the Hertz cases [1/m].
-    const CURV_B: f64 = 1.5;
-    /// Approach of the Hertz cases [m].
-    const DELTA: f64 = 50e-6;
 
     fn params() -> NormalParams {
         NormalParams::default()
@@ -178,19 +173,11 @@ mod tests {
         test_support::run(&mut Analyn::default(), geom, params, delta)
     }
 
-    fn hertz(ratio: f64) -> (f64, HertzPatch) {
-        let a = ratio * CURV_B;
-        (
-            a,
-            hertz_from_approach(a, CURV_B, DELTA, params().e_star).unwrap(),
-        )
-    }
-
     #[test]
     fn hertz_gap_gives_hertz_pressure_strip_by_strip() {
         // x_l² = a²(1 − s²/b²), p_max = p0 √(1 − s²/b²) at every strip, for any alignment.
         for ratio in [1.0, 1.0 / 3.0, 0.1, 3.0, 0.02, 10.0] {
-            let (curv_a, h) = hertz(ratio);
+            let (curv_a, h) = hertz_case(ratio);
             for (lo, hi, n) in [
                 (-1.0, 1.0, 199),
                 (-1.3, 1.17, 200),
@@ -227,7 +214,7 @@ mod tests {
     #[test]
     fn normal_force_tends_to_hertz_with_strip_count() {
         // Odd counts on [−b, b]: |N/N_H − 1| = Δs²/(8b²) = 1/(2 n²) → 0.
-        let (curv_a, h) = hertz(0.25);
+        let (curv_a, h) = hertz_case(0.25);
         let mut last = f64::INFINITY;
         for n in [25, 51, 101, 199] {
             let geom = StripGeometry::quadratic(curv_a, CURV_B, -h.b, h.b, n);
@@ -251,7 +238,7 @@ mod tests {
 
     #[test]
     fn mirrored_gap_gives_mirrored_pressure() {
-        let w = 1.5 * hertz(1.0).1.b;
+        let w = 1.5 * hertz_case(1.0).1.b;
         let gap = move |s: f64| {
             (
                 CURV_B * s * s * (1.0 - 0.5 * s / w),
@@ -316,6 +303,6 @@ mod tests {
 
     #[test]
     fn normal_force_is_continuous_while_b_crosses_zero() {
-        assert_continuous_sweep(Analyn::default, 1.5 * hertz(1.0 / 1.5).1.b, DELTA);
+        assert_continuous_sweep(Analyn::default, 1.5 * hertz_case(1.0 / 1.5).1.b, DELTA);
     }
 }

@@ -608,17 +608,11 @@ impl StripModel for CoupledStrips {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
     use crate::normal::test_support::{
-        self, assert_continuous_sweep, awkward_geometries, awkward_geometry, no_nan, table,
-        two_wells, AWKWARD_DELTAS, SECOND_MINIMUM,
+        self, assert_continuous_sweep, awkward_geometries, awkward_geometry, hertz_case, no_nan,
+        table, two_wells, AWKWARD_DELTAS, CURV_B, DELTA, SECOND_MINIMUM,
     };
-
-    /// Lateral curvature of the Hertz cases [1/m].
-    const CURV_B: f64 = 1.5;
-    /// Approach of the Hertz cases [m].
-    const DELTA: f64 = 50e-6;
 
     fn params() -> NormalParams {
         NormalParams::default()
@@ -626,14 +620,6 @@ mod tests {
 
     fn run(geom: &StripGeometry, delta: f64) -> (StripSolution, f64) {
         test_support::run(&mut CoupledStrips::default(), geom, &params(), delta)
-    }
-
-    fn hertz(ratio: f64) -> (f64, HertzPatch) {
-        let a = ratio * CURV_B;
-        (
-            a,
-            hertz_from_approach(a, CURV_B, DELTA, params().e_star).unwrap(),
-        )
     }
 
     /// A wheel–rail-like gap: a Hertz core with a quartic flattening and a lateral tilt of A
@@ -656,7 +642,7 @@ mod tests {
         // better than 24. The area, a midpoint sum of 2a_i Δs, within its edge strips' error
         // ≤ 2e−3 (as ANALYN's, analyn.rs; measured ≤ 2.4e−4).
         for ratio in [0.2, 1.0, 5.0] {
-            let (curv_a, h) = hertz(ratio);
+            let (curv_a, h) = hertz_case(ratio);
             let mut errors = Vec::new();
             for n in [24, 48, 96] {
                 let geom = StripGeometry::quadratic(curv_a, CURV_B, -1.07 * h.b, 1.13 * h.b, n);
@@ -702,7 +688,7 @@ mod tests {
         // (uniqueness at the final half-lengths); projected Gauss–Seidel from zero loads reaches
         // the same loads; every loaded strip's reported peak and half-length on its local Hertz
         // ratio, p0 = ratio E* a (C1), within 1e−9 (the half-lengths settle to 1e−10).
-        let (curv_a, h) = hertz(0.3);
+        let (curv_a, h) = hertz_case(0.3);
         let cases = [
             (
                 StripGeometry::quadratic(curv_a, CURV_B, -1.2 * h.b, 1.1 * h.b, 40),
@@ -843,7 +829,11 @@ mod tests {
 
     #[test]
     fn normal_force_is_continuous_while_b_crosses_zero() {
-        assert_continuous_sweep(CoupledStrips::default, 1.5 * hertz(1.0 / 1.5).1.b, DELTA);
+        assert_continuous_sweep(
+            CoupledStrips::default,
+            1.5 * hertz_case(1.0 / 1.5).1.b,
+            DELTA,
+        );
     }
 
     /// Whether every run of loaded strips in `sol` has at least 3 strips.
@@ -896,7 +886,7 @@ mod tests {
     }
 
     fn hertz_gap_48() -> StripGeometry {
-        let (curv_a, h) = hertz(0.5);
+        let (curv_a, h) = hertz_case(0.5);
         StripGeometry::quadratic(curv_a, CURV_B, -2.0 * h.b, 2.0 * h.b, 48)
     }
 
@@ -910,7 +900,7 @@ mod tests {
         for geom_of in [
             (|e: f64| flattened(24, e)) as fn(f64) -> StripGeometry,
             |e: f64| {
-                let (curv_a, h) = hertz(0.5);
+                let (curv_a, h) = hertz_case(0.5);
                 StripGeometry::from_fn(-2.0 * h.b, 2.0 * h.b, 24, move |s| {
                     (CURV_B * (s - e) * (s - e), curv_a, CURV_B)
                 })

@@ -355,26 +355,11 @@ mod tests {
     use super::*;
     use crate::geometry::strips::MAX_STRIPS;
 
-    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
-    use crate::normal::test_support::{self, no_nan, two_wells};
-
-    /// Lateral curvature of the Hertz cases [1/m] (flat-tread wheel on a 600 mm crown).
-    const CURV_B: f64 = 1.5;
-    /// Approach of the Hertz cases [m].
-    const DELTA: f64 = 50e-6;
+    use crate::normal::test_support::{self, hertz_patch, no_nan, two_wells, CURV_B, DELTA};
 
     fn run(geom: &StripGeometry, delta: f64) -> (StripSolution, f64) {
-        test_support::run(
-            &mut KikPiotrowski::default(),
-            geom,
-            &NormalParams::default(),
-            delta,
-        )
-    }
-
-    fn hertz(curv_a: f64, curv_b: f64, delta: f64) -> HertzPatch {
-        hertz_from_approach(curv_a, curv_b, delta, NormalParams::default().e_star).unwrap()
+        test_support::run_default::<KikPiotrowski>(geom, delta)
     }
 
     /// A Hertz gap on `n` strips over an asymmetric span (no strip centred on y0 = 0) covering
@@ -403,7 +388,7 @@ mod tests {
         let eps = 0.5;
         let mut model = KikPiotrowski::with_epsilon(eps);
         assert_eq!(model.epsilon(), eps);
-        let h = hertz(CURV_B, CURV_B, DELTA);
+        let h = hertz_patch(CURV_B, CURV_B, DELTA);
         let a = h.a;
         let geom = StripGeometry::quadratic(CURV_B, CURV_B, -1.13 * a, 1.07 * a, MAX_STRIPS);
         let (sol, n) = test_support::run(&mut model, &geom, &NormalParams::default(), DELTA);
@@ -450,7 +435,7 @@ mod tests {
             let geom = hertz_gap(curv_a, CURV_B, DELTA, MAX_STRIPS);
             let (sol, n) = run(&geom, DELTA);
             no_nan(&sol, n);
-            let h = hertz(curv_a, CURV_B, DELTA);
+            let h = hertz_patch(curv_a, CURV_B, DELTA);
             let p0 = peak_at_origin(&geom, &sol, KP_EPSILON, DELTA);
             let area = PatchSummary::of(&geom, &sol).area;
             eprintln!(
@@ -486,7 +471,7 @@ mod tests {
             no_nan(&sol, n);
             let a_v = (KP_EPSILON * DELTA / curv_a).sqrt();
             let b_v = (KP_EPSILON * DELTA / CURV_B).sqrt();
-            let h = hertz(curv_a, CURV_B, DELTA);
+            let h = hertz_patch(curv_a, CURV_B, DELTA);
             let rho_h = h.a / h.b;
             let (a, b) = ((a_v * b_v * rho_h).sqrt(), (a_v * b_v / rho_h).sqrt());
             let mut profile: f64 = 0.0;
@@ -532,7 +517,7 @@ mod tests {
         // (A/B = 0.1).
         for (ratio, expected) in [(1.0, 1.049), (0.1, 1.081), (0.02, 1.123)] {
             let curv_a = ratio * CURV_B;
-            let h = hertz(curv_a, CURV_B, DELTA);
+            let h = hertz_patch(curv_a, CURV_B, DELTA);
             let a_v = (KP_EPSILON * DELTA / curv_a).sqrt();
             let b_v = (KP_EPSILON * DELTA / CURV_B).sqrt();
             let a = (a_v * b_v * h.a / h.b).sqrt();
@@ -558,7 +543,7 @@ mod tests {
                         .1
                 })
                 .collect();
-            let h = hertz(curv_a, CURV_B, DELTA);
+            let h = hertz_patch(curv_a, CURV_B, DELTA);
             let diffs: Vec<f64> = forces
                 .windows(2)
                 .map(|w| (w[1] - w[0]) / forces[3])

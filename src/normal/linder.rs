@@ -416,28 +416,13 @@ impl StripModel for Linder {
 mod tests {
     use super::*;
     use crate::geometry::strips::MAX_STRIPS;
-    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
-    use crate::normal::test_support::{self, no_nan};
-
-    /// Lateral curvature of the Hertz cases [1/m] (flat-tread wheel on a 600 mm crown).
-    const CURV_B: f64 = 1.5;
-    /// Approach of the Hertz cases [m].
-    const DELTA: f64 = 50e-6;
+    use crate::normal::test_support::{self, hertz_patch, no_nan, CURV_B, DELTA};
     /// Strips of the Hertz cases (MAX_STRIPS).
     const STRIPS: usize = MAX_STRIPS;
 
     fn run(geom: &StripGeometry, delta: f64) -> (StripSolution, f64) {
-        test_support::run(
-            &mut Linder::default(),
-            geom,
-            &NormalParams::default(),
-            delta,
-        )
-    }
-
-    fn hertz(curv_a: f64, curv_b: f64, delta: f64) -> HertzPatch {
-        hertz_from_approach(curv_a, curv_b, delta, NormalParams::default().e_star).unwrap()
+        test_support::run_default::<Linder>(geom, delta)
     }
 
     /// Virtual semi-axes √(εδ/A), √(εδ/B) [m].
@@ -483,7 +468,7 @@ mod tests {
             50.0,
         ] {
             let curv_a = ratio * CURV_B;
-            let h = hertz(curv_a, CURV_B, DELTA);
+            let h = hertz_patch(curv_a, CURV_B, DELTA);
             let p0 = hertz_peak_from_curvature(h.a, h.b, curv_a, NormalParams::default().e_star);
             assert!(
                 (p0 / h.p0 - 1.0).abs() < 1e-12,
@@ -555,7 +540,7 @@ mod tests {
             let curv_a = ratio * CURV_B;
             let geom = hertz_gap(curv_a, CURV_B, DELTA);
             let (sol, n) = run(&geom, DELTA);
-            let h = hertz(curv_a, CURV_B, DELTA);
+            let h = hertz_patch(curv_a, CURV_B, DELTA);
             let sum = PatchSummary::of(&geom, &sol);
             eprintln!(
                 "A/B = {ratio:.4}: p0/p0_H = {:.5} (expected {p0_ratio}), N/N_H = {:.5} \
@@ -583,7 +568,7 @@ mod tests {
             (10.0, true),
         ] {
             let curv_a = ratio * CURV_B;
-            let h = hertz(curv_a, CURV_B, DELTA);
+            let h = hertz_patch(curv_a, CURV_B, DELTA);
             let delta = approach_for_load(|d| hertz_gap(curv_a, CURV_B, d), h.normal_force, DELTA);
             let geom = hertz_gap(curv_a, CURV_B, delta);
             let (sol, _) = run(&geom, delta);

@@ -468,33 +468,21 @@ impl StripModel for StripesAB {
 mod tests {
     use super::*;
     use crate::geometry::strips::MAX_STRIPS;
-    use crate::normal::hertz::{hertz_from_approach, HertzPatch};
     use crate::normal::strips::PatchSummary;
     use crate::normal::test_support::{
-        assert_continuous_sweep, awkward_geometries, no_nan, run, table, AWKWARD_DELTAS,
+        assert_continuous_sweep, awkward_geometries, hertz_case, no_nan, run, table,
+        AWKWARD_DELTAS, CURV_B, DELTA,
     };
 
     /// Tolerance of per-strip comparisons with exact Hertz, normalised by a² or p0: the table's
     /// 1e−7 relative accuracy of ε_x and P (strips.rs), amplified at most a few times by
     /// x_l² = (εδ − B* s²)/A (two terms of size ≤ εδ).
     const TABLE_TOL: f64 = 1e-6;
-    /// Lateral curvature of the Hertz cases [1/m] (flat-tread wheel on a 600 mm crown).
-    const CURV_B: f64 = 1.5;
-    /// Approach of the Hertz cases [m].
-    const DELTA: f64 = 50e-6;
     /// Curvature ratios A/B of the exactness check (docs/theory.md §5.5).
     const RATIOS: [f64; 5] = [1.0, 1.0 / 3.0, 0.1, 3.0, 0.02];
 
     fn params() -> NormalParams {
         NormalParams::default()
-    }
-
-    fn hertz(ratio: f64) -> (f64, HertzPatch) {
-        let a = ratio * CURV_B;
-        (
-            a,
-            hertz_from_approach(a, CURV_B, DELTA, params().e_star).unwrap(),
-        )
     }
 
     /// Largest deviation of the strips from the Hertz-like pressure x_l² = a²(1 − s²/w²),
@@ -523,7 +511,7 @@ mod tests {
         // a and p0 are sampled exactly and the V1 midpoint sum of ∝ (1 − s²/b²) is exactly
         // N_H (1 + Δs²/(8b²)) (1.26e−5 here; 400 strips are beyond MAX_STRIPS).
         for ratio in RATIOS {
-            let (curv_a, h) = hertz(ratio);
+            let (curv_a, h) = hertz_case(ratio);
             let geom = StripGeometry::quadratic(curv_a, CURV_B, -h.b, h.b, 199);
             let (sol, n) = run(&mut StripesB::default(), &geom, &params(), DELTA);
             let sum = PatchSummary::of(&geom, &sol);
@@ -550,7 +538,7 @@ mod tests {
     fn stripes_b_hertz_exact_wherever_the_first_contact_point_lies() {
         // Off-centre origin (inside a strip at an arbitrary offset) and an origin outside the
         // strip set: S3's piecewise-constant integration from s = 0 keeps f* = B* s².
-        let (curv_a, h) = hertz(0.1);
+        let (curv_a, h) = hertz_case(0.1);
         for (lo, hi, n) in [
             (-1.3, 1.17, 200),
             (-0.83, 1.4, 37),
@@ -596,7 +584,7 @@ mod tests {
         let mut u: f64 = 0.1_f64.ln();
         while u <= 10.0_f64.ln() + 1e-9 {
             let ratio = u.exp();
-            let (curv_a, h) = hertz(ratio);
+            let (curv_a, h) = hertz_case(ratio);
             let eps_approx = approximate_shape_factor(curv_a, CURV_B);
             let width = ((1.0 - eps_approx) * DELTA / CURV_B).sqrt();
             let geom = StripGeometry::quadratic(curv_a, CURV_B, -1.1 * h.b, 1.1 * h.b, 199);
@@ -614,14 +602,14 @@ mod tests {
         eprintln!("A4 worst |b̃/b_H − 1| on 0.1 ≤ A/B ≤ 10: {worst:.4}");
         assert!(worst < 0.021);
         for (ratio, expect) in [(0.1, 0.9792), (10.0, 1.0101), (0.02, 0.914)] {
-            let (curv_a, h) = hertz(ratio);
+            let (curv_a, h) = hertz_case(ratio);
             let eps_approx = approximate_shape_factor(curv_a, CURV_B);
             let width = ((1.0 - eps_approx) * DELTA / CURV_B).sqrt();
             eprintln!("A/B = {ratio}: b̃/b_H = {:.4}", width / h.b);
             assert!((width / h.b - expect).abs() < 1e-3);
         }
         // Exact at A/B = 1.
-        let (curv_a, h) = hertz(1.0);
+        let (curv_a, h) = hertz_case(1.0);
         let geom = StripGeometry::quadratic(curv_a, CURV_B, -h.b, h.b, 199);
         let (sol, _) = run(&mut StripesAB::default(), &geom, &params(), DELTA);
         assert!(profile_error(&geom, &sol, h.a, h.b, h.p0) < TABLE_TOL);
@@ -672,7 +660,7 @@ mod tests {
 
     /// Half-width of the spike-test patch's Hertz part [m].
     fn spike_half_width() -> f64 {
-        hertz(1.0).1.b
+        hertz_case(1.0).1.b
     }
 
     /// A Hertz gap (A = B = 1.5 1/m) with a narrow lateral-curvature spike (×20, Gaussian of
@@ -700,7 +688,7 @@ mod tests {
             PatchSummary::of(&geom, &sharp).pmax,
             PatchSummary::of(&geom, &smooth).pmax,
         );
-        let p_hertz = hertz(1.0).1.p0;
+        let p_hertz = hertz_case(1.0).1.p0;
         eprintln!(
             "spike: pmax/p0_H {:.3} raw, {:.3} smoothed; N {n_sharp:.1} / {n_smooth:.1} N",
             p_sharp / p_hertz,
@@ -749,7 +737,7 @@ mod tests {
     }
 
     fn assert_mirrored(model: &mut impl StripModel, params: &NormalParams) {
-        let w = 1.5 * hertz(1.0).1.b;
+        let w = 1.5 * hertz_case(1.0).1.b;
         let gap = asymmetric_gap(w);
         let n = 77;
         let geom = StripGeometry::from_fn(-w, 0.7 * w, n, &gap);
@@ -783,7 +771,7 @@ mod tests {
         // vanishes linearly there, slope 2/b), so |N/N_lim − 1| ≤ (Δs/b)²/2 (of 4b/3).
         // Limits: Hertz gap, STRIPES-B: N_H; STRIPES-AB: (2/3)π a_H b̃ p0_H; non-Hertzian gap
         // f = B0 s² + c s⁴: the 200-strip result (bound doubled: its patch is narrower than b_H).
-        let (curv_a, h) = hertz(1.0 / 3.0);
+        let (curv_a, h) = hertz_case(1.0 / 3.0);
         let eps_approx = approximate_shape_factor(curv_a, CURV_B);
         let width_ab = ((1.0 - eps_approx) * DELTA / CURV_B).sqrt();
         let limit_ab = 2.0 / 3.0 * std::f64::consts::PI * h.a * width_ab * h.p0;
@@ -869,7 +857,7 @@ mod tests {
     #[test]
     fn normal_force_is_continuous_while_b_crosses_zero() {
         // Deep enough that STRIPES-AB's shifted (stiffer) B still lets B < 0 strips touch.
-        let w = 1.5 * hertz(1.0 / 1.5).1.b;
+        let w = 1.5 * hertz_case(1.0 / 1.5).1.b;
         assert_continuous_sweep(StripesB::default, w, 3.0 * DELTA);
         assert_continuous_sweep(StripesAB::default, w, 3.0 * DELTA);
     }

@@ -2,6 +2,7 @@
 //! the awkward geometries every model must survive.
 
 use crate::geometry::strips::StripGeometry;
+use crate::normal::hertz::{hertz_from_approach, HertzPatch};
 use crate::normal::shape::HertzShapeTable;
 use crate::normal::strips::StripSolution;
 use crate::normal::{NormalParams, StripModel};
@@ -24,6 +25,33 @@ pub fn run<M: StripModel + ?Sized>(
     model.prepare(geom, params, table());
     let n = model.solve(geom, params, table(), delta, &mut out);
     (out, n)
+}
+
+/// A default `M` prepared on `geom` and solved at the approach `delta` [m] with the default
+/// parameters: the strips and the force [N].
+pub fn run_default<M: StripModel + Default>(
+    geom: &StripGeometry,
+    delta: f64,
+) -> (StripSolution, f64) {
+    run(&mut M::default(), geom, &NormalParams::default(), delta)
+}
+
+/// Lateral curvature B of the Hertz cases [1/m] (flat-tread wheel on a 600 mm crown).
+pub const CURV_B: f64 = 1.5;
+/// Approach δ of the Hertz cases [m].
+pub const DELTA: f64 = 50e-6;
+
+/// The Hertz patch of the curvatures `curv_a`, `curv_b` [1/m] at the approach `delta` [m], with
+/// the default parameters' E*.
+pub fn hertz_patch(curv_a: f64, curv_b: f64, delta: f64) -> HertzPatch {
+    hertz_from_approach(curv_a, curv_b, delta, NormalParams::default().e_star).unwrap()
+}
+
+/// The Hertz case of curvature ratio A/B = `ratio`: A = `ratio` · [`CURV_B`] [1/m] and its
+/// patch at the approach [`DELTA`].
+pub fn hertz_case(ratio: f64) -> (f64, HertzPatch) {
+    let a = ratio * CURV_B;
+    (a, hertz_patch(a, CURV_B, DELTA))
 }
 
 /// Every strip's half-length, peak and force, and the total, finite and non-negative.

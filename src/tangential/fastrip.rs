@@ -1410,15 +1410,10 @@ pub fn solve_ellipse(
 #[cfg(test)]
 mod tests {
     use super::*;
+    // CONTACT `fastsim` example (docs/theory.md §4.6, fastsim.ref_out cases 4 and 7) in SI units.
+    use crate::tangential::fastsim::contact_example::{A, B, G, MU, N, NU};
     use crate::tangential::fastsim::CONTACT_EXAMPLE;
 
-    // CONTACT `fastsim` example (docs/theory.md §4.6, fastsim.ref_out cases 4 and 7) in SI units.
-    const A: f64 = CONTACT_EXAMPLE.a;
-    const B: f64 = CONTACT_EXAMPLE.b;
-    const N: f64 = CONTACT_EXAMPLE.normal_force;
-    const G: f64 = CONTACT_EXAMPLE.shear_modulus;
-    const NU: f64 = CONTACT_EXAMPLE.nu;
-    const MU: f64 = CONTACT_EXAMPLE.mu;
     const MU_N: f64 = MU * N;
     /// η = −6.25e−4, φ = 6.25e−4 mm⁻¹ = 0.625 m⁻¹, ξ = 0.
     const ETA: f64 = -6.25e-4;
@@ -1443,14 +1438,7 @@ mod tests {
         let c = coefficients();
         blended_flexibilities(
             three_flexibilities(A, B, G, &c),
-            &EllipticContact {
-                a: A,
-                b: B,
-                normal_force: N,
-                shear_modulus: G,
-                nu: NU,
-                mu: MU,
-            },
+            &CONTACT_EXAMPLE,
             &c,
             &Creepage { xi, eta, phi },
         )

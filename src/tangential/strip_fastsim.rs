@@ -631,19 +631,12 @@ fn element_centre(i: usize, n: usize) -> f64 {
 mod tests {
     use super::*;
     use crate::tangential::fastsim::CONTACT_EXAMPLE;
-    use crate::tangential::fastsim::{
-        three_flexibilities, EllipticContact, Fastsim, FastsimSettings,
-    };
+    use crate::tangential::fastsim::{three_flexibilities, Fastsim, FastsimSettings};
     use crate::tangential::kalker::creep_coefficients;
     use std::f64::consts::PI;
 
-    /// CONTACT's `fastsim` example ellipse (docs/theory.md §4.6) in SI units.
-    const A: f64 = CONTACT_EXAMPLE.a;
-    const B: f64 = CONTACT_EXAMPLE.b;
-    const N: f64 = CONTACT_EXAMPLE.normal_force;
-    const G: f64 = CONTACT_EXAMPLE.shear_modulus;
-    const NU: f64 = CONTACT_EXAMPLE.nu;
-    const MU: f64 = CONTACT_EXAMPLE.mu;
+    // CONTACT's `fastsim` example ellipse (docs/theory.md §4.6) in SI units.
+    use crate::tangential::fastsim::contact_example::{A, B, G, MU, N, NU};
 
     /// The Hertz ellipse cut into `ny` strips with its own F1 flexibilities and planar creepages.
     fn hertz_strips(ny: usize, creepage: Creepage) -> Vec<TangentialStrip> {
@@ -783,14 +776,7 @@ mod tests {
             ..Default::default()
         })
         .unwrap();
-        let contact = EllipticContact {
-            a: A,
-            b: B,
-            normal_force: N,
-            shear_modulus: G,
-            nu: NU,
-            mu: MU,
-        };
+        let contact = CONTACT_EXAMPLE;
         let e = f.solve(&contact, &k, 1.0).unwrap();
         eprintln!(
             "strips: Fy/μN {:.4} Mz {:.2}; elliptic: {:.4} {:.2}",

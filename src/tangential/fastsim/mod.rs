@@ -896,6 +896,25 @@ pub(crate) const CONTACT_EXAMPLE: EllipticContact = EllipticContact {
     mu: 0.3,
 };
 
+/// [`CONTACT_EXAMPLE`]'s quantities as constants of the tangential solvers' tests.
+#[cfg(test)]
+pub(crate) mod contact_example {
+    use super::CONTACT_EXAMPLE;
+
+    /// Longitudinal semi-axis a [m].
+    pub(crate) const A: f64 = CONTACT_EXAMPLE.a;
+    /// Lateral semi-axis b [m].
+    pub(crate) const B: f64 = CONTACT_EXAMPLE.b;
+    /// Normal force N [N].
+    pub(crate) const N: f64 = CONTACT_EXAMPLE.normal_force;
+    /// Combined shear modulus G [Pa].
+    pub(crate) const G: f64 = CONTACT_EXAMPLE.shear_modulus;
+    /// Combined Poisson ratio ν [-].
+    pub(crate) const NU: f64 = CONTACT_EXAMPLE.nu;
+    /// Coefficient of friction μ [-].
+    pub(crate) const MU: f64 = CONTACT_EXAMPLE.mu;
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
