@@ -6,12 +6,14 @@
 //! (a minimum's group and the merged group holding it lie at the same place), so the outputs are
 //! built from the physical regions instead (docs/conventions.md, "Output slots"):
 //!
-//! 1. **Basins.** The laterals between the ridges of the gap (the search's candidates and
-//!    ridges at the end of the step) cut the wheel into basins, one per minimum. Each internal
-//!    part (a weighted group's patch) is attributed to the basins its load lies in: a Hertz
-//!    patch by the share of its interpenetration at the wheel's lowering over each basin, a strip
-//!    patch strip by strip (a strip straddling a ridge split by its lateral extent). A part
-//!    within one basin (the common case) is attributed whole.
+//! 1. **Basins.** The search's candidates in contact at the wheel's lowering cut the wheel into
+//!    basins, one per minimum, separated at the ridge between neighbours where it is submerged,
+//!    else half-way between their interpenetration regions' edges. Each internal part (a
+//!    weighted group's patch) is attributed to the basins its load lies in: a Hertz patch by the
+//!    share of its interpenetration at the wheel's lowering over each basin, a strip patch strip
+//!    by strip (a strip straddling a bound split by its lateral extent; a piece's reference
+//!    point, rolling radius and angle are the part's, moved by how its strips' means differ from
+//!    the part's). A part within one basin (the common case) is attributed whole.
 //! 2. **Regions.** Neighbouring basins belong to one region where their interpenetration regions
 //!    at the wheel's lowering touch (the ridge between them is submerged) or their loads' centres
 //!    lie within [`NEAR`] of each other; they separate continuously: the combination fraction
@@ -29,11 +31,13 @@
 //!    free slot, heaviest first; beyond three, the lightest are not shown (their forces are in
 //!    the totals).
 //!
-//! A reported patch's normal force, area, creep forces, spin moment and frictional power are
-//! the sums of what its basins carry; its contact angle the direction of its normal forces'
-//! resultant; its reference point, rolling radius, peak pressure and other figures their means
-//! weighted by the normal force. One part in one basin is reported as it is. The wheel's totals
-//! (force, moment) are the internal parts', unchanged.
+//! A reported patch's contact angle is the direction of its normal forces' resultant; its
+//! normal and creep forces the whole force of what it carries decomposed in its contact axes
+//! (the reported patches' forces sum to the wheel's); its spin moment, area and frictional power
+//! the sums; its peak pressure per part the largest share × piece peak, averaged over the parts
+//! by normal force; its reference point, rolling radius and other figures their means weighted
+//! by normal force. One part in one basin is reported as it is. The wheel's totals (force,
+//! moment) are the internal parts', unchanged.
 
 use nalgebra::Vector3;
 
