@@ -123,6 +123,7 @@ const UNITS: &[(&str, [i32; 4])] = &[
     ("rad", [0, 0, 0, 1]),
     ("rad/s", [0, 0, -1, 1]),
     ("s", [0, 0, 1, 0]),
+    ("kg/m", [1, -1, 0, 0]),
 ];
 
 const LOG_CATEGORIES: &[(&str, &str)] = &[

@@ -9,6 +9,7 @@
 //! Units are SI at every public boundary (m, N, Pa, rad, s); frames and signs are documented in
 //! `docs/conventions.md`.
 
+pub mod damage;
 pub mod error;
 
 // Layers, bottom up: numbers, geometry, normal and tangential contact, the contact point and the

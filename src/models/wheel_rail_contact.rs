@@ -4,6 +4,7 @@
 //! is answered with its outputs and a warning (`fmi2Warning`).
 
 use super::{fastsim_settings, set_output};
+use crate::damage::{DamageParams, WearModel};
 use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::{IntegerVar, RealVar, Values, VarInfo};
 use crate::geometry::groups::MAX_GROUPS;
@@ -106,7 +107,7 @@ const LOAD_STEP: f64 = 1e-4;
 const SPIN_STEP: f64 = 1e-4;
 
 /// Output handles of one patch, in the order of [`patch_values`].
-type PatchVars = [RealVar; 21];
+type PatchVars = [RealVar; 26];
 
 fn patch_vars(right: bool, k: usize) -> PatchVars {
     use var::*;
@@ -133,6 +134,11 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p1_adhesionFraction,
             left_p1_frictionalPower,
             left_p1_maxTraction,
+            left_p1_Tgamma,
+            left_p1_wheelWearRate,
+            left_p1_railWearRate,
+            left_p1_fatigueIndex,
+            left_p1_fatigueIndexLocal,
         ],
         [
             left_p2_Fn,
@@ -156,6 +162,11 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p2_adhesionFraction,
             left_p2_frictionalPower,
             left_p2_maxTraction,
+            left_p2_Tgamma,
+            left_p2_wheelWearRate,
+            left_p2_railWearRate,
+            left_p2_fatigueIndex,
+            left_p2_fatigueIndexLocal,
         ],
         [
             left_p3_Fn,
@@ -179,6 +190,11 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             left_p3_adhesionFraction,
             left_p3_frictionalPower,
             left_p3_maxTraction,
+            left_p3_Tgamma,
+            left_p3_wheelWearRate,
+            left_p3_railWearRate,
+            left_p3_fatigueIndex,
+            left_p3_fatigueIndexLocal,
         ],
     ];
     const RIGHT: [PatchVars; MAX_PATCHES] = [
@@ -204,6 +220,11 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p1_adhesionFraction,
             right_p1_frictionalPower,
             right_p1_maxTraction,
+            right_p1_Tgamma,
+            right_p1_wheelWearRate,
+            right_p1_railWearRate,
+            right_p1_fatigueIndex,
+            right_p1_fatigueIndexLocal,
         ],
         [
             right_p2_Fn,
@@ -227,6 +248,11 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p2_adhesionFraction,
             right_p2_frictionalPower,
             right_p2_maxTraction,
+            right_p2_Tgamma,
+            right_p2_wheelWearRate,
+            right_p2_railWearRate,
+            right_p2_fatigueIndex,
+            right_p2_fatigueIndexLocal,
         ],
         [
             right_p3_Fn,
@@ -250,6 +276,11 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
             right_p3_adhesionFraction,
             right_p3_frictionalPower,
             right_p3_maxTraction,
+            right_p3_Tgamma,
+            right_p3_wheelWearRate,
+            right_p3_railWearRate,
+            right_p3_fatigueIndex,
+            right_p3_fatigueIndexLocal,
         ],
     ];
     if right {
@@ -259,21 +290,44 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
     }
 }
 
-/// Totals of one side: nPatches, then Fx, Fy, Fz, z, Mx, My, Mz, YQ.
-fn side_vars(right: bool) -> (IntegerVar, [RealVar; 8]) {
+/// Totals of one side: nPatches, then Fx, Fy, Fz, z, Mx, My, Mz, YQ, Tgamma, wheelWearRate,
+/// railWearRate, rcfDamage.
+fn side_vars(right: bool) -> (IntegerVar, [RealVar; 12]) {
     use var::*;
     if right {
         (
             right_nPatches,
             [
-                right_Fx, right_Fy, right_Fz, right_z, right_Mx, right_My, right_Mz, right_YQ,
+                right_Fx,
+                right_Fy,
+                right_Fz,
+                right_z,
+                right_Mx,
+                right_My,
+                right_Mz,
+                right_YQ,
+                right_Tgamma,
+                right_wheelWearRate,
+                right_railWearRate,
+                right_rcfDamage,
             ],
         )
     } else {
         (
             left_nPatches,
             [
-                left_Fx, left_Fy, left_Fz, left_z, left_Mx, left_My, left_Mz, left_YQ,
+                left_Fx,
+                left_Fy,
+                left_Fz,
+                left_z,
+                left_Mx,
+                left_My,
+                left_Mz,
+                left_YQ,
+                left_Tgamma,
+                left_wheelWearRate,
+                left_railWearRate,
+                left_rcfDamage,
             ],
         )
     }
@@ -398,7 +452,28 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
         )?,
         planar_patch: values.boolean(var::planarPatch),
         reuse_tangential: true,
+        damage: damage_params(values)?,
     })
+}
+
+/// The damage outputs' parameters (each range-checked when set).
+fn damage_params(values: &Values) -> Result<DamageParams, ModelError> {
+    let code = values.integer(var::wearModel);
+    let wear_model = WearModel::from_code(code).ok_or_else(|| {
+        ModelError::Error(format!(
+            "wearModel = {code} is outside the allowed range [0, 2]"
+        ))
+    })?;
+    let params = DamageParams {
+        wear_model,
+        wheel_hardness: values.real(var::wheelHardness),
+        rail_hardness: values.real(var::railHardness),
+        shear_yield_strength: values.real(var::shearYieldStrength),
+    };
+    params
+        .validate()
+        .map_err(|e| ModelError::Error(e.to_string()))?;
+    Ok(params)
 }
 
 /// The model that the integer parameter `name` selects by `code` (`from_code`, valid 1 to
@@ -469,7 +544,20 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
     values.set_integer(n, side.n_patches as i32);
     let [fx, fy, fz] = side.force;
     let [mx, my, mz] = side.moment;
-    let total_values = [fx, fy, fz, side.z, mx, my, mz, side.derailment_quotient];
+    let total_values = [
+        fx,
+        fy,
+        fz,
+        side.z,
+        mx,
+        my,
+        mz,
+        side.derailment_quotient,
+        side.t_gamma,
+        side.wheel_wear_rate,
+        side.rail_wear_rate,
+        side.rcf_damage,
+    ];
     for (v, x) in totals.into_iter().zip(total_values) {
         set_output(values, v, x)?;
     }
@@ -497,6 +585,11 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
             p.adhesion_fraction,
             p.frictional_power,
             p.max_traction,
+            p.t_gamma,
+            p.wheel_wear_rate,
+            p.rail_wear_rate,
+            p.fatigue_index,
+            p.fatigue_index_local,
         ];
         for (v, x) in patch_vars(right, k).into_iter().zip(xs) {
             set_output(values, v, x)?;

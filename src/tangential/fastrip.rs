@@ -586,7 +586,12 @@ pub(crate) fn solve_strip_with_pressure(
         creepage,
         sampling,
     };
-    let out = StripRow { qx, qy, slipping };
+    let out = StripRow {
+        qx,
+        qy,
+        slipping,
+        power: None,
+    };
     solve_elements(&problem, |i| grid_element(i, n), out)
 }
 
@@ -598,10 +603,16 @@ pub(crate) fn solve_strip_on_grid(
     qx: &mut [f64],
     qy: &mut [f64],
     slipping: &mut [bool],
+    power: &mut [f64],
 ) -> FastripStripSums {
     let n = grid.len();
-    assert!(qx.len() == n && qy.len() == n && slipping.len() == n);
-    let out = StripRow { qx, qy, slipping };
+    assert!(qx.len() == n && qy.len() == n && slipping.len() == n && power.len() == n);
+    let out = StripRow {
+        qx,
+        qy,
+        slipping,
+        power: Some(power),
+    };
     let elements = &grid.elements[..n];
     solve_elements(problem, |i| elements[i], out)
 }
@@ -638,6 +649,9 @@ struct StripRow<'a> {
     qx: &'a mut [f64],
     qy: &'a mut [f64],
     slipping: &'a mut [bool],
+    /// Each element's frictional power density |q| |S| [N/m] (its term of the strip's
+    /// `power_density`), where asked for.
+    power: Option<&'a mut [f64]>,
 }
 
 /// FS3 in the adhesion zone of one strip, per element, with the strip's constants hoisted.
@@ -961,8 +975,16 @@ fn solve_elements(
     element: impl Fn(usize) -> (f64, f64),
     out: StripRow<'_>,
 ) -> FastripStripSums {
-    let StripRow { qx, qy, slipping } = out;
+    let StripRow {
+        qx,
+        qy,
+        slipping,
+        mut power,
+    } = out;
     let n = qx.len();
+    if let Some(p) = power.as_deref_mut() {
+        p[..n].fill(0.0);
+    }
     let mut sums = FastripStripSums {
         n_elements: n,
         ..FastripStripSums::default()
@@ -1054,6 +1076,7 @@ fn solve_elements(
     let mut acc = StripAccumulator::default();
     if let Some(zone) = &adhesion_zone {
         for i in (first_adhesion..n).rev() {
+            let before = acc.power;
             let (zeta, root) = element(i);
             let shape = shape_at(zeta, root);
             let xr = x_l * zeta;
@@ -1076,9 +1099,13 @@ fn solve_elements(
             qx[i] = tx;
             qy[i] = ty;
             slipping[i] = fs3.is_none();
+            if let Some(p) = power.as_deref_mut() {
+                p[i] = acc.power - before;
+            }
         }
     }
     for i in (0..first_adhesion).rev() {
+        let before = acc.power;
         let (zeta, root) = element(i);
         let shape = shape_at(zeta, root);
         let xr = x_l * zeta;
@@ -1096,6 +1123,9 @@ fn solve_elements(
         qx[i] = tx;
         qy[i] = ty;
         slipping[i] = true;
+        if let Some(p) = power.as_deref_mut() {
+            p[i] = acc.power - before;
+        }
     }
     sums.fx = acc.sum_qx * dx;
     sums.fy = acc.sum_qy * dx;

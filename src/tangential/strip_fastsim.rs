@@ -62,7 +62,8 @@ use crate::error::InputError;
 use crate::geometry::strips::MAX_STRIPS;
 use crate::tangential::fastrip::{semi_ellipse_midpoint_ratio, StripGrid};
 use crate::tangential::fastsim::{
-    strip_outs, Creepage, FastsimResult, MarchScheme, StripMarch, StripOut, StripSums, MAX_GROUP,
+    strip_outs, Creepage, FastsimResult, FrictionElement, MarchScheme, StripMarch, StripOut,
+    StripSums, MAX_GROUP,
 };
 use crate::tangential::kalker::CreepCoefficients;
 use crate::tangential::strip_coefficients::{CouplingStrip, StripCoefficients};
@@ -179,6 +180,10 @@ pub struct StripFastsim {
     px: Vec<f64>,
     py: Vec<f64>,
     slipping: Vec<bool>,
+    /// FaStrip's frictional power density |q| |S| per element [N/m] (its solves only).
+    power: Vec<f64>,
+    /// Whether the last solve was FaStrip's ([`StripFastsim::friction_elements`]).
+    last_fastrip: bool,
     /// Strip geometry of the last solve (for [`StripFastsim::tractions`]).
     geometry: Vec<(f64, f64, f64)>,
     /// Per-strip sums of the last solve.
@@ -228,6 +233,8 @@ impl StripFastsim {
             px: vec![0.0; MAX_STRIPS * nx],
             py: vec![0.0; MAX_STRIPS * nx],
             slipping: vec![false; MAX_STRIPS * nx],
+            power: vec![0.0; MAX_STRIPS * nx],
+            last_fastrip: false,
             geometry: vec![(0.0, 0.0, 0.0); MAX_STRIPS],
             totals: vec![StripTotals::default(); MAX_STRIPS],
             n_strips: 0,
@@ -257,36 +264,9 @@ impl StripFastsim {
         // Element rows are cleared only for strips that carry nothing; the march writes every
         // element of the others.
         let n = self.take_geometry(strips);
-        let spin_offset_fraction = self.scheme.spin_offset_fraction();
-        // The elements tile the strip: the leading centre lies Δx/2 behind its edge.
-        let lead = self.scheme.lead_fraction(0.5);
-        let march_of = |strip: &TangentialStrip| {
-            let [l1, l2, l3] = strip.flexibility;
-            let usable = |v: f64| v.is_finite() && v > 0.0;
-            if !(usable(strip.half_length)
-                && usable(strip.pmax)
-                && usable(strip.width)
-                && usable(l1)
-                && usable(l2)
-                && usable(l3))
-            {
-                return None;
-            }
-            let dx = 2.0 * strip.half_length / nx as f64;
-            let k = strip.creepage;
-            let march = StripMarch {
-                x_first: strip.x_c - strip.half_length + 0.5 * dx,
-                dx,
-                step_y_at_zero: k.eta / l2 * dx,
-                step_y_per_x: k.phi / l3 * dx,
-                spin_offset: spin_offset_fraction * dx,
-                lead_fraction: lead,
-                bound_scale: mu * strip.pmax,
-                slip_flexibility: [l1, l2],
-            };
-            let step_x = (k.xi / l1 - strip.reference_spin * strip.lever / l3) * dx;
-            Some((march, step_x))
-        };
+        self.last_fastrip = false;
+        let scheme = self.scheme;
+        let march_of = |strip: &TangentialStrip| strip_march(strip, nx, scheme, mu);
         let totals = |strip: &TangentialStrip, march: &StripMarch, sums: &StripSums| {
             let area = march.dx * strip.width;
             StripTotals {
@@ -389,53 +369,60 @@ impl StripFastsim {
         // `run` visits the strips in order: the gains go by a running index.
         let gains = std::mem::take(&mut self.gains);
         let mut next = gains.iter();
-        let result = self.run(strips, speed, |strip, px_row, py_row, slip_row| {
-            let (gain_x, gain_y) = next.next().copied().unwrap_or((1.0, 1.0));
-            if !(strip.half_length > 0.0 && strip.pmax > 0.0 && strip.width > 0.0) {
-                return None;
-            }
-            let k = Creepage {
-                xi: k_lever(strip),
-                ..strip.creepage
-            };
-            let scales = patch_scales.with_creepage(k.xi * gain_x, k.eta * gain_y, k.phi * gain_x);
-            let strip_input = FastripStrip {
-                y: strip.lever,
-                x_c: strip.x_c,
-                half_length: strip.half_length,
-                pmax: strip.pmax,
-            };
-            let (flex, w) = (strip.flexibility, strip.width);
-            // The bound sums to the strip's load on its elements, as in `fastrip::solve_strip`.
-            let bound = StripPressure::scaled(&strip_input, ratio);
-            let problem = StripProblem {
-                strip: &strip_input,
-                pressure: bound,
-                scales: &scales,
-                mu,
-                flex,
-                creepage: [k.xi, k.eta, k.phi],
-                sampling: ZoneSampling::ExactZone,
-            };
-            let sums = solve_strip_on_grid(
-                &problem,
-                &grid,
-                &mut px_row[..nx],
-                &mut py_row[..nx],
-                &mut slip_row[..nx],
-            );
-            // FaStrip's sums are per unit strip width.
-            Some(StripTotals {
-                fx: sums.fx * w,
-                fy: sums.fy * w,
-                x_fy: sums.x_fy * w,
-                power_per_speed: sums.power_density * w,
-                max_traction: sums.max_traction,
-                n_elements: sums.n_elements,
-                n_adhesion: sums.n_adhesion,
-            })
-        });
+        let result = self.run(
+            strips,
+            speed,
+            |strip, px_row, py_row, slip_row, power_row| {
+                let (gain_x, gain_y) = next.next().copied().unwrap_or((1.0, 1.0));
+                if !(strip.half_length > 0.0 && strip.pmax > 0.0 && strip.width > 0.0) {
+                    return None;
+                }
+                let k = Creepage {
+                    xi: k_lever(strip),
+                    ..strip.creepage
+                };
+                let scales =
+                    patch_scales.with_creepage(k.xi * gain_x, k.eta * gain_y, k.phi * gain_x);
+                let strip_input = FastripStrip {
+                    y: strip.lever,
+                    x_c: strip.x_c,
+                    half_length: strip.half_length,
+                    pmax: strip.pmax,
+                };
+                let (flex, w) = (strip.flexibility, strip.width);
+                // The bound sums to the strip's load on its elements, as in `fastrip::solve_strip`.
+                let bound = StripPressure::scaled(&strip_input, ratio);
+                let problem = StripProblem {
+                    strip: &strip_input,
+                    pressure: bound,
+                    scales: &scales,
+                    mu,
+                    flex,
+                    creepage: [k.xi, k.eta, k.phi],
+                    sampling: ZoneSampling::ExactZone,
+                };
+                let sums = solve_strip_on_grid(
+                    &problem,
+                    &grid,
+                    &mut px_row[..nx],
+                    &mut py_row[..nx],
+                    &mut slip_row[..nx],
+                    &mut power_row[..nx],
+                );
+                // FaStrip's sums are per unit strip width.
+                Some(StripTotals {
+                    fx: sums.fx * w,
+                    fy: sums.fy * w,
+                    x_fy: sums.x_fy * w,
+                    power_per_speed: sums.power_density * w,
+                    max_traction: sums.max_traction,
+                    n_elements: sums.n_elements,
+                    n_adhesion: sums.n_adhesion,
+                })
+            },
+        );
         self.gains = gains;
+        self.last_fastrip = true;
         result
     }
 
@@ -516,6 +503,7 @@ impl StripFastsim {
             &mut [f64],
             &mut [f64],
             &mut [bool],
+            &mut [f64],
         ) -> Option<StripTotals>,
     ) -> StripFastsimResult {
         let n = self.take_geometry(strips);
@@ -526,7 +514,8 @@ impl StripFastsim {
                 strip,
                 &mut self.px[row.clone()],
                 &mut self.py[row.clone()],
-                &mut self.slipping[row],
+                &mut self.slipping[row.clone()],
+                &mut self.power[row],
             ) {
                 Some(t) => self.totals[j] = t,
                 None => self.clear_rows(j..j + 1),
@@ -552,7 +541,8 @@ impl StripFastsim {
         let elements = rows.start * self.nx..rows.end * self.nx;
         self.px[elements.clone()].fill(0.0);
         self.py[elements.clone()].fill(0.0);
-        self.slipping[elements].fill(false);
+        self.slipping[elements.clone()].fill(false);
+        self.power[elements].fill(0.0);
     }
 
     /// The patch's sums over the strips' totals (in strip order), stored per strip as well.
@@ -622,6 +612,85 @@ impl StripFastsim {
     }
 }
 
+impl StripFastsim {
+    /// The elements in contact of the last solve of `strips` (the same slice) as the damage
+    /// models see them ([`FrictionElement`]): FASTSIM's slip replayed from its field
+    /// ([`StripMarch::slips`]), FaStrip's from its power density (|s| = |q| |S|/(|q| Δx)).
+    pub fn friction_elements(
+        &self,
+        strips: &[TangentialStrip],
+        mut visit: impl FnMut(&FrictionElement),
+    ) {
+        let nx = self.nx;
+        for (j, strip) in strips[..self.n_strips.min(strips.len())].iter().enumerate() {
+            let Some((march, step_x)) = strip_march(strip, nx, self.scheme, 1.0) else {
+                continue;
+            };
+            let row = j * nx..(j + 1) * nx;
+            let (px, py) = (&self.px[row.clone()], &self.py[row.clone()]);
+            let area = march.dx * strip.width;
+            let element = |i: usize, slip: f64| FrictionElement {
+                area,
+                pressure: strip.pmax * self.shape[i],
+                traction: px[i].hypot(py[i]),
+                slip,
+            };
+            if self.last_fastrip {
+                for (i, &density) in self.power[row].iter().enumerate() {
+                    let e = element(i, 0.0);
+                    let slip = if e.traction > 0.0 {
+                        density / (e.traction * march.dx)
+                    } else {
+                        0.0
+                    };
+                    visit(&FrictionElement { slip, ..e });
+                }
+            } else {
+                march.slips(step_x, px, py, &self.slipping[row], |i, slip| {
+                    visit(&element(i, slip))
+                });
+            }
+        }
+    }
+}
+
+/// The F3 march of `strip` on `nx` elements with `scheme` and friction `mu` (module header) and
+/// its x step (ξ_j/L1 − φ_ref y_j/L3)Δx; `None` for a strip that carries no traction
+/// (non-finite or non-positive length, pressure, width or flexibility).
+fn strip_march(
+    strip: &TangentialStrip,
+    nx: usize,
+    scheme: MarchScheme,
+    mu: f64,
+) -> Option<(StripMarch, f64)> {
+    let [l1, l2, l3] = strip.flexibility;
+    let usable = |v: f64| v.is_finite() && v > 0.0;
+    if !(usable(strip.half_length)
+        && usable(strip.pmax)
+        && usable(strip.width)
+        && usable(l1)
+        && usable(l2)
+        && usable(l3))
+    {
+        return None;
+    }
+    let dx = 2.0 * strip.half_length / nx as f64;
+    let k = strip.creepage;
+    let march = StripMarch {
+        x_first: strip.x_c - strip.half_length + 0.5 * dx,
+        dx,
+        step_y_at_zero: k.eta / l2 * dx,
+        step_y_per_x: k.phi / l3 * dx,
+        spin_offset: scheme.spin_offset_fraction() * dx,
+        // The elements tile the strip: the leading centre lies Δx/2 behind its edge.
+        lead_fraction: scheme.lead_fraction(0.5),
+        bound_scale: mu * strip.pmax,
+        slip_flexibility: [l1, l2],
+    };
+    let step_x = (k.xi / l1 - strip.reference_spin * strip.lever / l3) * dx;
+    Some((march, step_x))
+}
+
 /// Centre of element `i` of `n` equal elements on (−1, 1).
 fn element_centre(i: usize, n: usize) -> f64 {
     -1.0 + (2.0 * i as f64 + 1.0) / n as f64
@@ -665,6 +734,62 @@ mod tests {
     fn solve(ny: usize, nx: usize, creepage: Creepage) -> StripFastsimResult {
         let mut s = StripFastsim::new(nx, MarchScheme::Contact).unwrap();
         s.solve(&hertz_strips(ny, creepage), MU, 1.0)
+    }
+
+    /// Σ |q| |s| ΔA over [`StripFastsim::friction_elements`] [N], and the number of elements.
+    fn element_power(s: &StripFastsim, strips: &[TangentialStrip]) -> (f64, usize) {
+        let (mut sum, mut count) = (0.0, 0);
+        s.friction_elements(strips, |e| {
+            assert!(e.slip >= 0.0 && e.traction >= 0.0 && e.pressure > 0.0 && e.area > 0.0);
+            sum += e.traction * e.slip * e.area;
+            count += 1;
+        });
+        (sum, count)
+    }
+
+    #[test]
+    fn element_slips_add_up_to_the_frictional_power() {
+        // The slip field the damage models read (replayed from FASTSIM's stored tractions, or
+        // FaStrip's own element terms) carries the solver's frictional power: V Σ |q| |s| ΔA = P
+        // to rounding (1e−12), for both schemes, partial and full slip, with spin, and both
+        // FaStrip variants on the patch's equivalent ellipse.
+        let cases = [
+            (2e-4, 1e-4, 0.0),
+            (1e-3, -5e-4, 0.3),
+            (0.0, 0.0, 2.0),
+            (0.05, 0.02, 0.0),
+        ];
+        let ellipse = crate::tangential::patch::EquivalentEllipse {
+            contact: crate::tangential::fastsim::CONTACT_EXAMPLE,
+            coefficients: creep_coefficients(A, B, NU).unwrap(),
+        };
+        let speed = 12.5;
+        for (xi, eta, phi) in cases {
+            let k = Creepage { xi, eta, phi };
+            let strips = hertz_strips(30, k);
+            for scheme in [MarchScheme::Contact, MarchScheme::Midpoint] {
+                let mut s = StripFastsim::new(24, scheme).unwrap();
+                s.reserve_coupled(30);
+                for run in 0..3 {
+                    let r = match run {
+                        0 => s.solve(&strips, MU, speed),
+                        1 => s.solve_fastrip(&strips, &ellipse, speed, false),
+                        _ => s.solve_fastrip(&strips, &ellipse, speed, true),
+                    };
+                    let (sum, count) = element_power(&s, &strips);
+                    assert_eq!(count, 30 * 24);
+                    let power = speed * sum;
+                    assert!(
+                        (power - r.frictional_power).abs() <= 1e-12 * r.frictional_power.max(1.0),
+                        "{k:?} {scheme:?} run {run}: {power} vs {}",
+                        r.frictional_power
+                    );
+                    if xi == 0.05 {
+                        assert!(power > 0.0);
+                    }
+                }
+            }
+        }
     }
 
     #[test]

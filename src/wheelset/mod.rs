@@ -48,6 +48,7 @@ pub use regions::Slot;
 
 use nalgebra::Vector3;
 
+use crate::damage::{fatigue, DamageParams, PatchDamage};
 use crate::error::InputError;
 use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::profile::Profile;
@@ -106,6 +107,8 @@ pub struct WheelsetSettings {
     /// load since the last tangential solve keeps that solution, scaled to its normal forces
     /// (docs/theory.md §8.3). `false`: every pass solves the tangential problem again.
     pub reuse_tangential: bool,
+    /// Wear model and fatigue parameters of the damage outputs (docs/theory.md §10).
+    pub damage: DamageParams,
 }
 
 impl WheelsetSettings {
@@ -124,6 +127,7 @@ impl WheelsetSettings {
             tangential: TangentialModel::ModelDefault,
             planar_patch: false,
             reuse_tangential: true,
+            damage: DamageParams::default(),
         }
     }
 }
@@ -197,9 +201,21 @@ pub struct PatchResult {
     /// Curvatures used for the ellipse [1/m].
     pub curv_a: f64,
     pub curv_b: f64,
+    /// Energy dissipated per metre rolled, Tγ = frictional power / rolling speed [N = J/m]
+    /// (0 at zero speed).
+    pub t_gamma: f64,
+    /// Mass worn off the wheel and off the rail per metre rolled by the `wearModel`, summed
+    /// element by element [kg/m] (0 with `wearModel` 0).
+    pub wheel_wear_rate: f64,
+    pub rail_wear_rate: f64,
+    /// Ekberg's surface fatigue index μ_eff − k/p0 of the patch [-] (`crate::damage::fatigue`).
+    pub fatigue_index: f64,
+    /// The largest local fatigue index (|q| − k)/p over the patch's elements [-] (0 with
+    /// `wearModel` 0).
+    pub fatigue_index_local: f64,
     /// Weight of the patch in the wheel's forces (1 but where two contact descriptions are
-    /// blended, `crate::geometry::groups`); `fn_`, `fx`, `fy`, `mz`, `area` and
-    /// `frictional_power` include it [-].
+    /// blended, `crate::geometry::groups`); `fn_`, `fx`, `fy`, `mz`, `area`,
+    /// `frictional_power`, `t_gamma` and the wear rates include it [-].
     pub weight: f64,
 }
 
@@ -213,6 +229,18 @@ impl PatchResult {
         self.adhesion_fraction = t.adhesion_fraction;
         self.frictional_power = t.frictional_power;
         self.max_traction = t.max_traction;
+    }
+
+    /// Takes the damage of the patch's fields and its Tγ at rolling speed `speed` [m/s].
+    fn set_damage(&mut self, d: &PatchDamage, speed: f64) {
+        self.wheel_wear_rate = d.wheel_wear_rate;
+        self.rail_wear_rate = d.rail_wear_rate;
+        self.fatigue_index_local = d.fatigue_index_local;
+        self.t_gamma = if speed > 0.0 {
+            self.frictional_power / speed
+        } else {
+            0.0
+        };
     }
 }
 
@@ -263,6 +291,12 @@ pub struct SideResult {
     pub derailment_quotient: f64,
     /// The wheel's downward displacement from nominal at which it carries its load [m].
     pub z: f64,
+    /// Sums over the wheel's reported patches: Tγ [J/m], wear rates [kg/m] and the Whole Life
+    /// Rail Model's damage per wheel pass of each patch's Tγ [-] (`crate::damage::fatigue`).
+    pub t_gamma: f64,
+    pub wheel_wear_rate: f64,
+    pub rail_wear_rate: f64,
+    pub rcf_damage: f64,
 }
 
 impl SideResult {
@@ -288,6 +322,29 @@ impl SideResult {
         self.moment = [0.0; 3];
         self.derailment_quotient = 0.0;
         self.z = z;
+        self.t_gamma = 0.0;
+        self.wheel_wear_rate = 0.0;
+        self.rail_wear_rate = 0.0;
+        self.rcf_damage = 0.0;
+    }
+
+    /// The damage outputs that follow from the reported patches' own outputs: each patch's
+    /// surface fatigue index (shear yield strength `k` [Pa]) and the wheel's sums.
+    fn finish_damage(&mut self, k: f64) {
+        let index = |p: &mut PatchResult| {
+            p.fatigue_index = fatigue::surface_index(p.fx, p.fy, p.fn_, p.pmax, k);
+        };
+        self.patches
+            .iter_mut()
+            .filter(|p| p.weight > 0.0)
+            .for_each(index);
+        self.regions[..self.n_regions].iter_mut().for_each(index);
+        for p in &self.regions[..self.n_regions] {
+            self.t_gamma += p.t_gamma;
+            self.wheel_wear_rate += p.wheel_wear_rate;
+            self.rail_wear_rate += p.rail_wear_rate;
+            self.rcf_damage += fatigue::wlrm_damage(p.t_gamma);
+        }
     }
 }
 
@@ -678,6 +735,9 @@ fn store_patch(
         &mut result.mz,
         &mut result.area,
         &mut result.frictional_power,
+        &mut result.t_gamma,
+        &mut result.wheel_wear_rate,
+        &mut result.rail_wear_rate,
     ] {
         *v *= weight;
     }
@@ -746,6 +806,7 @@ fn solve_side(
     check_balance(side.name, load, out)?;
     out.derailment_quotient = derailment_quotient(s, out.force);
     regions::report(side, input, ctx.settings.planar_patch, out);
+    out.finish_damage(ctx.settings.damage.shear_yield_strength);
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)
         .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratio, slope));

@@ -242,6 +242,8 @@ fn aggregate(sigma: f64, pieces: &[Piece], items: &[(usize, f64)]) -> PatchResul
     let (mut area_adhesion, mut position) = (0.0, Vector3::zeros());
     let mut part_peak = [0.0_f64; MAX_GROUPS];
     let mut part_load = [0.0; MAX_GROUPS];
+    // The largest local fatigue index of the parts that contribute.
+    let mut local = f64::NEG_INFINITY;
     for &(i, f) in items {
         let (p, part) = (pieces[i].result, pieces[i].part);
         let fn_ = f * p.fn_;
@@ -254,6 +256,12 @@ fn aggregate(sigma: f64, pieces: &[Piece], items: &[(usize, f64)]) -> PatchResul
         out.mz += f * p.mz;
         out.area += f * p.area;
         out.frictional_power += f * p.frictional_power;
+        out.t_gamma += f * p.t_gamma;
+        out.wheel_wear_rate += f * p.wheel_wear_rate;
+        out.rail_wear_rate += f * p.rail_wear_rate;
+        if f > 0.0 {
+            local = local.max(p.fatigue_index_local);
+        }
         area_adhesion += f * p.area * p.adhesion_fraction;
         position += Vector3::from(p.position) * fn_;
         for (sum, v) in [
@@ -303,6 +311,9 @@ fn aggregate(sigma: f64, pieces: &[Piece], items: &[(usize, f64)]) -> PatchResul
     }
     if out.area > 0.0 {
         out.adhesion_fraction = area_adhesion / out.area;
+    }
+    if local.is_finite() {
+        out.fatigue_index_local = local;
     }
     // The normal forces' resultant gives the angle (e_z = (0, σ sin γ, cos γ)); the whole force
     // is decomposed in the patch's axes, so that the reported patches' forces sum to the wheel's.
@@ -504,6 +515,9 @@ fn scaled(r: &PatchResult, share: f64) -> PatchResult {
         mz: r.mz * share,
         area: r.area * share,
         frictional_power: r.frictional_power * share,
+        t_gamma: r.t_gamma * share,
+        wheel_wear_rate: r.wheel_wear_rate * share,
+        rail_wear_rate: r.rail_wear_rate * share,
         ..*r
     }
 }

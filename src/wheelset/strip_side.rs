@@ -33,6 +33,7 @@ use super::kinematics::{
 };
 use super::reuse::{PatchTangential, Tangential, TangentialMemo};
 use super::{store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput};
+use crate::damage::DamageSum;
 use crate::error::InputError;
 use crate::geometry::groups::{group_bounds, groups_at, MAX_GROUPS};
 use crate::geometry::search::{ContactPlane, ContactPoint, StripPoints, WheelOnRail};
@@ -607,6 +608,7 @@ pub(super) fn strip_patch_result(
         ..PatchResult::default()
     };
     result.set_tangential(&t.solution);
+    result.set_damage(&t.damage, speed);
     if ctx.strips.planar {
         // In the patch's axes at this pass's angle (a reused solution's vector was summed in
         // the axes of the pass that solved it).
@@ -694,6 +696,10 @@ fn solve_strip_tangential(
     } else {
         solver.solve(&side.tangential_strips[..n], mu, speed)
     };
+    let mut damage = DamageSum::new(settings.damage, speed);
+    if settings.damage.element_wise() {
+        solver.friction_elements(&side.tangential_strips[..n], |e| damage.add(e));
+    }
     // Forces: planar — all strips in the patch's axes; non-planar — each strip's in its own.
     let mut tangential = Vector3::zeros();
     let mut fy_patch = 0.0;
@@ -717,6 +723,7 @@ fn solve_strip_tangential(
         key,
         solution: StripFastsimResult { fy: fy_patch, ..t },
         tangential,
+        damage: damage.finish(),
     })
 }
 

@@ -266,6 +266,21 @@ pub struct ElementTraction {
     pub slipping: bool,
 }
 
+/// One element of a solved traction field as the damage models see it
+/// (`crate::damage`): its area, pressure, traction and slip.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FrictionElement {
+    /// Element area ΔA [m²].
+    pub area: f64,
+    /// Normal pressure p [Pa].
+    pub pressure: f64,
+    /// Magnitude of the tangential traction |q| [Pa].
+    pub traction: f64,
+    /// Magnitude of the slip |s|: sliding distance per distance rolled [-] (0 in adhesion).
+    /// |q| |s| is the frictional power per unit area and rolling speed (local Tγ/A) [Pa].
+    pub slip: f64,
+}
+
 /// F1: flexibilities [L1, L2, L3] [m/Pa] for semi-axes `a` (rolling), `b` [m], shear modulus
 /// `shear_modulus` [Pa] and Kalker coefficients `c`.
 pub fn three_flexibilities(a: f64, b: f64, shear_modulus: f64, c: &CreepCoefficients) -> [f64; 3] {
@@ -420,6 +435,39 @@ impl StripMarch {
             self.step((&mut px, &mut py), step, bound, x, i, &mut sums, out);
         }
         sums
+    }
+
+    /// Replays a march whose tractions `px`, `py` and slip flags `slipping` are stored (the
+    /// outputs of [`StripMarch::run`] or [`StripMarch::run_group`] with the same `step_x`):
+    /// `visit(i, |s|)` for every element, |s| = |S|/Δx the sliding distance per distance rolled
+    /// of its slip displacement S = L (p − p*) (0 in adhesion) — the terms of the frictional
+    /// power, recomputed from the field instead of kept during the march.
+    pub(crate) fn slips(
+        &self,
+        step_x: f64,
+        px: &[f64],
+        py: &[f64],
+        slipping: &[bool],
+        mut visit: impl FnMut(usize, f64),
+    ) {
+        let [lx, ly] = self.slip_flexibility;
+        let (mut prev_x, mut prev_y) = (0.0_f64, 0.0_f64);
+        let mut fraction = self.lead_fraction;
+        for i in (0..px.len().min(py.len()).min(slipping.len())).rev() {
+            let f = fraction;
+            fraction = 1.0;
+            let (_, step_y, _) = self.element(i, f, 0.0);
+            let slip = if slipping[i] {
+                let sx = lx * (px[i] - (prev_x - f * step_x));
+                let sy = ly * (py[i] - (prev_y - step_y));
+                sx.hypot(sy) / self.dx
+            } else {
+                0.0
+            };
+            visit(i, slip);
+            prev_x = px[i];
+            prev_y = py[i];
+        }
     }
 
     /// F3 on a group of 2, 4 or [`MAX_GROUP`] strips of the same element count (`shape`), each
@@ -623,6 +671,12 @@ pub struct Fastsim {
     last_a: f64,
     last_b: f64,
     last_peak_pressure: f64,
+    /// The last solve's march constants (the strips' own start and lead set per strip), its
+    /// x increment per unit lever (ξ/L1 Δx, φ/L3 Δx) and the overdrive guard's power factor
+    /// (for [`Fastsim::friction_elements`]).
+    last_march: StripMarch,
+    last_step_x: (f64, f64),
+    last_power_factor: f64,
     has_field: bool,
     /// [`centre_pressure_resultant`] of this grid.
     centre_pressure_ratio: f64,
@@ -685,6 +739,9 @@ impl Fastsim {
             last_a: 0.0,
             last_b: 0.0,
             last_peak_pressure: 0.0,
+            last_march: StripMarch::default(),
+            last_step_x: (0.0, 0.0),
+            last_power_factor: 1.0,
             has_field: false,
             centre_pressure_ratio: ratio,
         })
@@ -826,6 +883,9 @@ impl Fastsim {
         self.last_a = a;
         self.last_b = b;
         self.last_peak_pressure = peak_pressure;
+        self.last_march = march;
+        self.last_step_x = (used.xi / l1 * dx, used.phi / l3 * dx);
+        self.last_power_factor = power_factor;
         self.has_field = true;
         let area = dx * dy;
         // Power: Σ |p| |V S/Δx| ΔxΔy = V Σ |p| |S| Δy; saturate instead of overflowing to ∞.
@@ -871,6 +931,51 @@ impl Fastsim {
                 }
             })
         })
+    }
+}
+
+impl Fastsim {
+    /// The last successful solve's elements in contact as the damage models see them
+    /// ([`FrictionElement`]; nothing after N = 0, an error, or before the first solve). The
+    /// slip is the march's own (its frictional power is V Σ |q| |s| ΔA).
+    pub fn friction_elements(&self, mut visit: impl FnMut(&FrictionElement)) {
+        if !self.has_field {
+            return;
+        }
+        let (nx, ny) = (self.settings.nx, self.settings.ny);
+        let (a, b) = (self.last_a, self.last_b);
+        let dx = 2.0 * a / nx as f64;
+        let area = dx * 2.0 * b / ny as f64;
+        let (xi_step, phi_step) = self.last_step_x;
+        for j in 0..ny {
+            let (first, end) = self.strip_range[j];
+            if first == end {
+                continue;
+            }
+            let y = b * normalised_centre(j, ny);
+            let m = StripMarch {
+                x_first: -a + (first as f64 + 0.5) * dx,
+                lead_fraction: self.lead_fraction[j],
+                ..self.last_march
+            };
+            let row = j * nx + first..j * nx + end;
+            let (px, py) = (&self.px[row.clone()], &self.py[row.clone()]);
+            let shape = &self.shape[row.clone()];
+            m.slips(
+                xi_step - phi_step * y,
+                px,
+                py,
+                &self.slipping[row],
+                |i, slip| {
+                    visit(&FrictionElement {
+                        area,
+                        pressure: self.last_peak_pressure * shape[i],
+                        traction: px[i].hypot(py[i]),
+                        slip: slip * self.last_power_factor,
+                    });
+                },
+            );
+        }
     }
 }
 
@@ -1597,6 +1702,36 @@ mod tests {
         // Peak pressure of the elliptic bound at the centre elements: 1223.5 MPa × √(1 − …).
         let pn_max = f.tractions().map(|e| e.pn).fold(0.0, f64::max);
         assert!(rel(pn_max, 1223.0e6) < 1e-3, "{pn_max}");
+    }
+
+    #[test]
+    fn element_slips_add_up_to_the_frictional_power() {
+        // The replayed slip field carries the march's power: V Σ |q| |s| ΔA = P to rounding,
+        // also through the overdrive guard (ξ = 1e6) and with the parabolic bound.
+        let c = oracle_contact();
+        for bound in [TractionBound::Elliptic, TractionBound::Parabolic] {
+            for scheme in [MarchScheme::Contact, MarchScheme::Midpoint] {
+                let mut f = Fastsim::new(FastsimSettings {
+                    nx: 30,
+                    ny: 25,
+                    bound,
+                    flexibility: Flexibility::Three,
+                    scheme,
+                })
+                .unwrap();
+                for (xi, eta, phi) in [(3e-4, -2e-4, 0.0), (1e-3, 0.0, 0.5), (1e6, 0.0, 0.0)] {
+                    let r = f.solve(&c, &Creepage { xi, eta, phi }, 7.0).unwrap();
+                    let mut sum = 0.0;
+                    f.friction_elements(|e| sum += e.traction * e.slip * e.area);
+                    let power = 7.0 * sum;
+                    assert!(
+                        (power - r.frictional_power).abs() <= 1e-12 * r.frictional_power,
+                        "{bound:?} {scheme:?} ξ {xi}: {power} vs {}",
+                        r.frictional_power
+                    );
+                }
+            }
+        }
     }
 
     #[test]
