@@ -8,6 +8,7 @@ mod common;
 mod linked;
 
 use fmi_host::Status;
+use railcontact::damage::WearModel;
 use railcontact::models::wheel_rail_contact::INFO;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::fastsim::{
@@ -48,10 +49,17 @@ fn wheelset_steps_do_not_allocate() {
     for model in NormalModel::ALL {
         for tangential in TangentialModel::ALL {
             for planar in [false, true] {
+                // The damage outputs on (the element-wise wear sums) with every other model.
+                let wear_model = if planar {
+                    WearModel::Usfd
+                } else {
+                    WearModel::ArchardKth
+                };
                 let mut ws = common::builtin_wheelset_with(|settings| {
                     settings.normal_model = model;
                     settings.tangential = tangential;
                     settings.planar_patch = planar;
+                    settings.damage.wear_model = wear_model;
                 });
                 let mut out = WheelsetResult::default();
                 let input = |y| common::central_input(y, 0.1);
