@@ -15,8 +15,10 @@
 //! `coupled-strips`), the number
 //! of solves, then optionally the motion (`steady`, `moving` or `hunting`), the tangential model
 //! on strip patches (`model-default`, `equivalent-ellipse`, `fastrip`, `local-ellipses`, `fastrip-coupled`) and
-//! `planar` for planar strip patches.
+//! `planar` for planar strip patches, then optionally the `wearModel` code (0–2; damage outputs
+//! on with 1 or 2).
 
+use railcontact::damage::WearModel;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::patch::TangentialModel;
 use railcontact::wheelset::WheelsetResult;
@@ -27,7 +29,8 @@ mod common;
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let usage =
-        "usage: solve_loop MODEL SOLVES [steady|moving|hunting] [TANGENTIAL] [planar|non-planar]";
+        "usage: solve_loop MODEL SOLVES [steady|moving|hunting] [TANGENTIAL] [planar|non-planar] \
+         [WEAR]";
     let model = args
         .get(1)
         .and_then(|name| NormalModel::from_name(name))
@@ -41,10 +44,17 @@ fn main() {
         });
     let tangential = tangential.expect(usage);
     let planar = args.get(5).is_some_and(|a| a == "planar");
+    let wear = args
+        .get(6)
+        .map_or(Some(WearModel::Off), |code| {
+            code.parse().ok().and_then(WearModel::from_code)
+        })
+        .expect(usage);
     let mut wheelset = common::builtin_wheelset_with(|settings| {
         settings.normal_model = model;
         settings.tangential = tangential;
         settings.planar_patch = planar;
+        settings.damage.wear_model = wear;
     });
     let input = |k: usize| match motion {
         "steady" => common::central_input(0.0, 0.0),

@@ -182,3 +182,78 @@ fn archard_wear_goes_as_one_over_the_hardness() {
         }
     }
 }
+
+/// Independent USFD function (Lewis & Dwyer-Joyce 2004 as docs/theory.md §10.2 states it): µg
+/// per metre rolled per mm² at Tγ/A in N/mm².
+fn usfd_published(t: f64) -> f64 {
+    if t < 10.4 {
+        5.3 * t
+    } else if t <= 77.2 {
+        55.0
+    } else {
+        (61.9 * t - 4778.7).max(55.0)
+    }
+}
+
+#[test]
+fn patch_sums_follow_the_functions_element_by_element() {
+    // FASTSIM on CONTACT's example ellipse from the linear to the saturated range (mild,
+    // severe and catastrophic elements): the wear rate equals an independent element-by-element
+    // summation of the published function over the same field, and the local fatigue index the
+    // brute-force maximum over its elements (the sum skips elements whose bound cannot beat the
+    // maximum: no difference beyond rounding).
+    use railcontact::damage::DamageSum;
+    use railcontact::tangential::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
+    let contact = EllipticContact {
+        a: 8e-3,
+        b: 4e-3,
+        normal_force: 82_000.0,
+        shear_modulus: 82e9,
+        nu: 0.28,
+        mu: 0.3,
+    };
+    let mut fastsim = Fastsim::new(FastsimSettings::default()).unwrap();
+    let speed = 20.0;
+    let params = usfd();
+    let k = params.shear_yield_strength;
+    let mut regimes = [false; 3];
+    for xi in [1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.4] {
+        let creepage = Creepage {
+            xi,
+            eta: -0.3 * xi,
+            phi: 0.2,
+        };
+        let r = fastsim.solve(&contact, &creepage, speed).unwrap();
+        let mut sum = DamageSum::new(params, speed);
+        let (mut independent, mut local, mut dissipated) = (0.0, f64::NEG_INFINITY, 0.0);
+        fastsim.friction_elements(|e| {
+            sum.add(e);
+            let q = e.traction_sq.sqrt();
+            local = f64::max(local, (q - k) / e.pressure);
+            let t = q * e.slip * 1e-6;
+            if e.slip > 0.0 {
+                regimes[usize::from(t >= 10.4) + usize::from(t > 77.2)] = true;
+            }
+            independent += usfd_published(t) * (e.area * 1e6) * 1e-9;
+            dissipated += q * e.slip * e.area;
+        });
+        // The field's Tγ is the solver's P/V.
+        assert!(
+            rel(dissipated, r.frictional_power / speed) < 1e-12,
+            "ξ {xi}"
+        );
+        let d = sum.finish(r.frictional_power / speed);
+        assert!(
+            rel(d.wheel_wear_rate, independent) < 1e-9,
+            "ξ {xi}: {d:?} {independent}"
+        );
+        // A slipping element's |q| is its bound to rounding, so the skipped elements may
+        // differ from the maximum by that much.
+        assert!(
+            (d.fatigue_index_local - local).abs() <= 1e-12 * local.abs().max(1.0),
+            "ξ {xi}: {} vs {local}",
+            d.fatigue_index_local
+        );
+    }
+    assert_eq!(regimes, [true; 3], "the creepages reach every regime");
+}

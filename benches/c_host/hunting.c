@@ -3,10 +3,11 @@
  * velocity vy = dy/dt and yaw rate dyaw/dt, 78.5 kN per wheel, kinematic creepages at 30 m/s
  * (omega = 30/0.46 x 1.001), 1 ms steps. Every step meets a new, yawed pose, as in a vehicle run.
  *
- * Usage: hunting LIB GUID RESOURCE_URI MOTION STEPS NORMAL TANGENTIAL PLANAR VR... (MOTION
- *   `hunting`, or `steady` for the central case held constant, y = yaw = 0; NORMAL, TANGENTIAL
- *   the codes of normalModel and tangentialModel, PLANAR 0 or 1; then the value references of
- *   normalModel tangentialModel planarPatch Qleft Qright y yaw vx vy yawRate omega).
+ * Usage: hunting LIB GUID RESOURCE_URI MOTION STEPS NORMAL TANGENTIAL PLANAR WEAR VR...
+ *   (MOTION `hunting`, or `steady` for the central case held constant, y = yaw = 0; NORMAL,
+ *   TANGENTIAL, WEAR the codes of normalModel, tangentialModel and wearModel, PLANAR 0 or 1;
+ *   then the value references of normalModel tangentialModel planarPatch wearModel Qleft Qright
+ *   y yaw vx vy yawRate omega).
  * Prints, in µs per fmi2DoStep (each step timed): the wall clock's mean, median, 99th percentile
  * and largest step, then the thread's CPU time's median and 99th percentile (CPU time leaves out
  * the steps' preemptions by other processes, milliseconds each on a loaded machine: the tail the
@@ -33,13 +34,14 @@ static int by_value(const void *a, const void *b) {
         }                                                                                      \
     } while (0)
 
-enum { NORMAL, TANGENTIAL, PLANAR, QL, QR, Y, YAW, VX, VY, YAWRATE, OMEGA, N_VR };
+enum { NORMAL, TANGENTIAL, PLANAR, WEAR, QL, QR, Y, YAW, VX, VY, YAWRATE, OMEGA, N_VR };
 
 int main(int argc, char **argv) {
-    if (argc != 9 + N_VR) {
+    if (argc != 10 + N_VR) {
         fprintf(stderr, "usage: %s LIB GUID RESOURCE_URI MOTION STEPS NORMAL TANGENTIAL PLANAR "
-                        "VR_normalModel VR_tangentialModel VR_planarPatch VR_Qleft VR_Qright VR_y "
-                        "VR_yaw VR_vx VR_vy VR_yawRate VR_omega\n", argv[0]);
+                        "WEAR VR_normalModel VR_tangentialModel VR_planarPatch VR_wearModel "
+                        "VR_Qleft VR_Qright VR_y VR_yaw VR_vx VR_vy VR_yawRate VR_omega\n",
+                argv[0]);
         return 2;
     }
     Fmi f;
@@ -48,8 +50,9 @@ int main(int argc, char **argv) {
     int steady = argv[4][0] == 's';
     int steps = atoi(argv[5]);
     int normal = atoi(argv[6]), tangential = atoi(argv[7]), planar = atoi(argv[8]);
+    int wear = atoi(argv[9]);
     VR vr[N_VR];
-    for (int i = 0; i < N_VR; i++) vr[i] = (VR)atoi(argv[9 + i]);
+    for (int i = 0; i < N_VR; i++) vr[i] = (VR)atoi(argv[10 + i]);
     if (steps < 1) return 2;
     double *times = malloc(sizeof(double) * (size_t)steps);
     double *cpu = malloc(sizeof(double) * (size_t)steps);
@@ -68,6 +71,7 @@ int main(int argc, char **argv) {
     CHECK(f.set_int(c, &vr[NORMAL], 1, &normal));
     CHECK(f.set_int(c, &vr[TANGENTIAL], 1, &tangential));
     CHECK(f.set_bool(c, &vr[PLANAR], 1, &planar));
+    CHECK(f.set_int(c, &vr[WEAR], 1, &wear));
     CHECK(f.enter(c));
     CHECK(f.set_real(c, &vr[QL], 1, &q));
     CHECK(f.set_real(c, &vr[QR], 1, &q));

@@ -13,10 +13,10 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 STEPS="${1:-20000}"
 # shellcheck source=benches/c_host/fmu_unpack.sh
-. benches/c_host/fmu_unpack.sh normalModel tangentialModel planarPatch Qleft Qright y yaw vx vy \
-  yawRate omega
+. benches/c_host/fmu_unpack.sh normalModel tangentialModel planarPatch wearModel Qleft Qright y \
+  yaw vx vy yawRate omega
 gcc -O2 -std=c99 -o "$WORK/hunting" benches/c_host/hunting.c -ldl -lm
-run() { "$WORK/hunting" "$LIB" "$GUID" "$URI" "$1" "$STEPS" "$2" "$3" "$4" $VRS; }
+run() { "$WORK/hunting" "$LIB" "$GUID" "$URI" "$1" "$STEPS" "$2" "$3" "$4" "${5:-0}" $VRS; }
 echo "fmi2DoStep from a C host, $STEPS steps of 1 ms, µs per step (machine: $(nproc) cores, $(uname -m))"
 printf "%-26s %-8s %8s %8s %8s %8s %8s %8s %6s %6s\n" configuration motion mean median p99 max \
   cpu-med cpu-p99 ratio cpu-r

@@ -98,76 +98,125 @@ pub struct DamageSum {
     params: DamageParams,
     /// Rolling speed [m/s] (the sliding velocity of Archard's map is its slip times this).
     speed: f64,
+    /// Archard: 1/H of the wheel and of the rail [1/Pa] and the map's seizure pressures 0.8 H.
+    inverse_hardness: [f64; 2],
+    seizure: [f64; 2],
+    /// Wear of the elements outside the USFD mild regime (all of them with Archard) [kg/m].
     wheel: f64,
     rail: f64,
+    /// Σ |q| |s| ΔA of the elements beyond the USFD mild regime [N] (the others' wear is the
+    /// mild coefficient times the rest of `t_gamma`).
+    beyond_mild: f64,
+    /// The largest local fatigue term (|q| − k)/p so far.
     local: f64,
+    /// Σ |q| |s| ΔA: the field's Tγ [N].
+    t_gamma: f64,
 }
 
 impl DamageSum {
     pub fn new(params: DamageParams, speed: f64) -> Self {
+        let h = [params.wheel_hardness, params.rail_hardness];
         Self {
             params,
             speed,
+            inverse_hardness: h.map(|h| 1.0 / h),
+            seizure: h.map(|h| 0.8 * h),
             wheel: 0.0,
             rail: 0.0,
+            beyond_mild: 0.0,
             local: f64::NEG_INFINITY,
+            t_gamma: 0.0,
         }
     }
 
-    /// Adds one element of the patch.
+    /// Adds one element of the patch (the per-element work of the damage outputs: a few
+    /// operations for an adhering element, a few more for a slipping one).
+    #[inline]
     pub fn add(&mut self, e: &FrictionElement) {
-        if !(e.pressure > 0.0 && e.area > 0.0) {
+        let p = &self.params;
+        let k = p.shear_yield_strength;
+        // Only an element whose bound could beat the largest term so far is looked at:
+        // (|q| − k)/p ≤ (bound − k)/p, and (bound − k)/p > local ⇔ bound − k > local p.
+        if e.bound - k > self.local * e.pressure {
+            let term = fatigue::local_term(e.traction_sq.sqrt(), e.pressure, k);
+            if term > self.local {
+                self.local = term;
+            }
+        }
+        if e.slip == 0.0 {
             return;
         }
-        let p = &self.params;
-        let local = fatigue::local_term(e.traction, e.pressure, p.shear_yield_strength);
-        if local > self.local {
-            self.local = local;
-        }
-        let (wheel, rail) = match p.wear_model {
-            WearModel::Off => (0.0, 0.0),
+        // Local Tγ/A [Pa] and the element's Tγ [N].
+        let density = e.traction_sq.sqrt() * e.slip;
+        let dissipated = density * e.area;
+        self.t_gamma += dissipated;
+        match p.wear_model {
+            WearModel::Off => {}
             WearModel::Usfd => {
-                let m = wear::usfd_rate(e.traction * e.slip) * e.area;
-                (m, m)
+                if density >= wear::USFD_MILD_LIMIT {
+                    let m = wear::usfd_rate(density) * e.area;
+                    self.beyond_mild += dissipated;
+                    self.wheel += m;
+                    self.rail += m;
+                }
             }
             WearModel::ArchardKth => {
-                let v = e.slip * self.speed;
-                let per_hardness = e.pressure * e.slip * e.area * wear::STEEL_DENSITY;
-                let k = |h: f64| wear::kth_coefficient(e.pressure, v, h) / h;
-                (
-                    k(p.wheel_hardness) * per_hardness,
-                    k(p.rail_hardness) * per_hardness,
-                )
+                // Mass per metre rolled per unit k/H: ρ p |s| ΔA; the map's k by the sliding
+                // velocity, k1 where the pressure exceeds 0.8 H of that body.
+                let mass = e.pressure * e.slip * e.area * wear::STEEL_DENSITY;
+                let sliding = wear::kth_coefficient(0.0, e.slip * self.speed, 1.0);
+                let k = |body: usize| {
+                    let k = if e.pressure > self.seizure[body] {
+                        wear::KTH_K1
+                    } else {
+                        sliding
+                    };
+                    k * self.inverse_hardness[body]
+                };
+                let (wheel, rail) = (k(0) * mass, k(1) * mass);
+                self.wheel += wheel;
+                self.rail += rail;
             }
-        };
-        if wheel.is_finite() && rail.is_finite() {
-            self.wheel += wheel;
-            self.rail += rail;
         }
     }
 
-    /// The patch's damage.
-    pub fn finish(&self) -> PatchDamage {
+    /// The Tγ of the elements added, Σ |q| |s| ΔA [N].
+    pub fn t_gamma(&self) -> f64 {
+        self.t_gamma
+    }
+
+    /// The patch's damage, its wear rates scaled to the patch's Tγ `t_gamma` [N] (the field's
+    /// own Tγ, [`DamageSum::t_gamma`], gives them unscaled: a patch that carries a share or a
+    /// scaled copy of the field wears in proportion).
+    pub fn finish(&self, t_gamma: f64) -> PatchDamage {
+        let scale = if self.t_gamma > 0.0 && t_gamma.is_finite() {
+            t_gamma / self.t_gamma
+        } else {
+            0.0
+        };
+        // The mild regime's elements all at once (W1: linear in Tγ/A); a sum that overflowed
+        // saturates (absurd creepages), as the frictional power does.
+        let mild = wear::usfd_rate(0.5 * wear::USFD_MILD_LIMIT) / (0.5 * wear::USFD_MILD_LIMIT);
+        let in_mild = match self.params.wear_model {
+            WearModel::Usfd => self.t_gamma - self.beyond_mild,
+            _ => 0.0,
+        };
+        let total = |part: f64| {
+            let w = (part + mild * in_mild) * scale;
+            if w.is_nan() {
+                0.0
+            } else {
+                w.min(f64::MAX)
+            }
+        };
         PatchDamage {
-            wheel_wear_rate: self.wheel,
-            rail_wear_rate: self.rail,
+            wheel_wear_rate: total(self.wheel),
+            rail_wear_rate: total(self.rail),
             fatigue_index_local: if self.local.is_finite() {
                 self.local
             } else {
                 0.0
             },
-        }
-    }
-}
-
-impl PatchDamage {
-    /// The damage of a patch whose forces were scaled by `force` (the wear rates go as the
-    /// frictional power; the local fatigue index is kept, as the adhesion fraction is).
-    pub fn scaled(&self, force: f64) -> Self {
-        Self {
-            wheel_wear_rate: self.wheel_wear_rate * force,
-            rail_wear_rate: self.rail_wear_rate * force,
-            ..*self
         }
     }
 }
@@ -180,7 +229,8 @@ mod tests {
         FrictionElement {
             area,
             pressure,
-            traction,
+            traction_sq: traction * traction,
+            bound: f64::INFINITY,
             slip,
         }
     }
@@ -217,7 +267,7 @@ mod tests {
         for e in &elements {
             sum.add(e);
             // µg/(m mm²) × mm² → kg/m.
-            let t = e.traction * e.slip * 1e-6;
+            let t: f64 = e.traction_sq.sqrt() * e.slip * 1e-6;
             let rate = if t < 10.4 {
                 5.3 * t
             } else if t <= 77.2 {
@@ -227,11 +277,14 @@ mod tests {
             };
             expected += rate * (e.area * 1e6) * 1e-9;
         }
-        let d = sum.finish();
+        let d = sum.finish(sum.t_gamma());
         assert!(
             (d.wheel_wear_rate / expected - 1.0).abs() < 1e-12,
             "{d:?} {expected}"
         );
+        // A patch carrying half the field wears half.
+        let half = sum.finish(0.5 * sum.t_gamma());
+        assert!((half.wheel_wear_rate / (0.5 * expected) - 1.0).abs() < 1e-12);
         assert_eq!(d.wheel_wear_rate, d.rail_wear_rate);
         // Local fatigue index: the largest (|q| − k)/p, here (3.6e8 − 3e8)/1.2e9 = 0.05.
         assert!((d.fatigue_index_local - 0.05).abs() < 1e-12);
@@ -249,7 +302,7 @@ mod tests {
         let e = element(1e-6, 1e9, 3e8, 1e-2);
         let mut sum = DamageSum::new(params, 30.0);
         sum.add(&e);
-        let d = sum.finish();
+        let d = sum.finish(sum.t_gamma());
         let volume = |h: f64| wear::KTH_K3 * 1e9 * 1e-2 * 1e-6 / h;
         assert!((d.wheel_wear_rate / (volume(2.0e9) * wear::STEEL_DENSITY) - 1.0).abs() < 1e-12);
         assert!((d.rail_wear_rate / (volume(4.0e9) * wear::STEEL_DENSITY) - 1.0).abs() < 1e-12);
@@ -264,11 +317,11 @@ mod tests {
             },
             1.0,
         );
-        assert_eq!(sum.finish(), PatchDamage::default());
+        assert_eq!(sum.finish(1.0), PatchDamage::default());
         sum.add(&element(0.0, 1e9, 1e8, 0.1));
         sum.add(&element(1e-6, 0.0, 0.0, 0.1));
         sum.add(&element(1e-6, 1e9, f64::INFINITY, f64::INFINITY));
-        let d = sum.finish();
+        let d = sum.finish(sum.t_gamma());
         assert!(d.wheel_wear_rate.is_finite() && d.rail_wear_rate.is_finite());
     }
 }

@@ -184,6 +184,10 @@ pub struct StripFastsim {
     power: Vec<f64>,
     /// Whether the last solve was FaStrip's ([`StripFastsim::friction_elements`]).
     last_fastrip: bool,
+    /// Per strip of the last solve: its march and x step (`None`: no traction) and its width,
+    /// for [`StripFastsim::friction_elements`].
+    marches: Vec<Option<(StripMarch, f64)>>,
+    widths: Vec<f64>,
     /// Strip geometry of the last solve (for [`StripFastsim::tractions`]).
     geometry: Vec<(f64, f64, f64)>,
     /// Per-strip sums of the last solve.
@@ -235,6 +239,8 @@ impl StripFastsim {
             slipping: vec![false; MAX_STRIPS * nx],
             power: vec![0.0; MAX_STRIPS * nx],
             last_fastrip: false,
+            marches: vec![None; MAX_STRIPS],
+            widths: vec![0.0; MAX_STRIPS],
             geometry: vec![(0.0, 0.0, 0.0); MAX_STRIPS],
             totals: vec![StripTotals::default(); MAX_STRIPS],
             n_strips: 0,
@@ -263,7 +269,7 @@ impl StripFastsim {
         let nx = self.nx;
         // Element rows are cleared only for strips that carry nothing; the march writes every
         // element of the others.
-        let n = self.take_geometry(strips);
+        let n = self.take_geometry(strips, mu);
         self.last_fastrip = false;
         let scheme = self.scheme;
         let march_of = |strip: &TangentialStrip| strip_march(strip, nx, scheme, mu);
@@ -506,7 +512,7 @@ impl StripFastsim {
             &mut [f64],
         ) -> Option<StripTotals>,
     ) -> StripFastsimResult {
-        let n = self.take_geometry(strips);
+        let n = self.take_geometry(strips, 1.0);
         let nx = self.nx;
         for (j, strip) in strips[..n].iter().enumerate() {
             let row = j * nx..(j + 1) * nx;
@@ -526,11 +532,14 @@ impl StripFastsim {
 
     /// Takes the geometry of `strips` (at most [`MAX_STRIPS`]: returns how many) and clears
     /// their totals (not their element rows).
-    fn take_geometry(&mut self, strips: &[TangentialStrip]) -> usize {
+    /// `mu`: the friction of the marches kept for [`StripFastsim::friction_elements`].
+    fn take_geometry(&mut self, strips: &[TangentialStrip], mu: f64) -> usize {
         let n = strips.len().min(MAX_STRIPS);
         self.n_strips = n;
         for (j, strip) in strips[..n].iter().enumerate() {
             self.geometry[j] = (strip.x_c, strip.half_length, strip.pmax);
+            self.marches[j] = strip_march(strip, self.nx, self.scheme, mu);
+            self.widths[j] = strip.width;
         }
         self.totals[..n].fill(StripTotals::default());
         n
@@ -613,41 +622,41 @@ impl StripFastsim {
 }
 
 impl StripFastsim {
-    /// The elements in contact of the last solve of `strips` (the same slice) as the damage
-    /// models see them ([`FrictionElement`]): FASTSIM's slip replayed from its field
-    /// ([`StripMarch::slips`]), FaStrip's from its power density (|s| = |q| |S|/(|q| Δx)).
-    pub fn friction_elements(
-        &self,
-        strips: &[TangentialStrip],
-        mut visit: impl FnMut(&FrictionElement),
-    ) {
+    /// The elements in contact of the last solve as the damage models see them
+    /// ([`FrictionElement`]): FASTSIM's slip replayed from its field ([`StripMarch::slips`]),
+    /// FaStrip's from its power density (|s| = |q| |S|/(|q| Δx)).
+    pub fn friction_elements(&self, mut visit: impl FnMut(&FrictionElement)) {
         let nx = self.nx;
-        for (j, strip) in strips[..self.n_strips.min(strips.len())].iter().enumerate() {
-            let Some((march, step_x)) = strip_march(strip, nx, self.scheme, 1.0) else {
+        for j in 0..self.n_strips {
+            let Some((march, step_x)) = self.marches[j] else {
                 continue;
             };
             let row = j * nx..(j + 1) * nx;
             let (px, py) = (&self.px[row.clone()], &self.py[row.clone()]);
-            let area = march.dx * strip.width;
-            let element = |i: usize, slip: f64| FrictionElement {
+            let area = march.dx * self.widths[j];
+            let pmax = self.geometry[j].2;
+            let element = |i: usize, traction_sq: f64, bound: f64, slip: f64| FrictionElement {
                 area,
-                pressure: strip.pmax * self.shape[i],
-                traction: px[i].hypot(py[i]),
+                pressure: pmax * self.shape[i],
+                traction_sq,
+                bound,
                 slip,
             };
             if self.last_fastrip {
+                // FaStrip's adhesion-zone tractions are not FASTSIM's: no bound is assumed.
                 for (i, &density) in self.power[row].iter().enumerate() {
-                    let e = element(i, 0.0);
-                    let slip = if e.traction > 0.0 {
-                        density / (e.traction * march.dx)
+                    let traction_sq = px[i] * px[i] + py[i] * py[i];
+                    let slip = if traction_sq > 0.0 {
+                        density / (traction_sq.sqrt() * march.dx)
                     } else {
                         0.0
                     };
-                    visit(&FrictionElement { slip, ..e });
+                    visit(&element(i, traction_sq, f64::INFINITY, slip));
                 }
             } else {
-                march.slips(step_x, px, py, &self.slipping[row], |i, slip| {
-                    visit(&element(i, slip))
+                let field = (px, py, &self.slipping[row]);
+                march.slips(step_x, &self.shape, field, |i, traction_sq, bound, slip| {
+                    visit(&element(i, traction_sq, bound, slip))
                 });
             }
         }
@@ -737,11 +746,13 @@ mod tests {
     }
 
     /// Σ |q| |s| ΔA over [`StripFastsim::friction_elements`] [N], and the number of elements.
-    fn element_power(s: &StripFastsim, strips: &[TangentialStrip]) -> (f64, usize) {
+    fn element_power(s: &StripFastsim) -> (f64, usize) {
         let (mut sum, mut count) = (0.0, 0);
-        s.friction_elements(strips, |e| {
-            assert!(e.slip >= 0.0 && e.traction >= 0.0 && e.pressure > 0.0 && e.area > 0.0);
-            sum += e.traction * e.slip * e.area;
+        s.friction_elements(|e| {
+            assert!(e.slip >= 0.0 && e.traction_sq >= 0.0 && e.pressure > 0.0 && e.area > 0.0);
+            // FASTSIM's elements lie within their bound.
+            assert!(e.traction_sq.sqrt() <= e.bound * (1.0 + 1e-12));
+            sum += e.traction_sq.sqrt() * e.slip * e.area;
             count += 1;
         });
         (sum, count)
@@ -776,7 +787,7 @@ mod tests {
                         1 => s.solve_fastrip(&strips, &ellipse, speed, false),
                         _ => s.solve_fastrip(&strips, &ellipse, speed, true),
                     };
-                    let (sum, count) = element_power(&s, &strips);
+                    let (sum, count) = element_power(&s);
                     assert_eq!(count, 30 * 24);
                     let power = speed * sum;
                     assert!(

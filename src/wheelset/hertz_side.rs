@@ -10,7 +10,6 @@ use super::{
     store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput,
     LOAD_ITERATIONS,
 };
-use crate::damage::DamageSum;
 use crate::error::InputError;
 use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::groups::{group_bounds, groups_at};
@@ -238,24 +237,24 @@ pub(super) fn add_patch(
             out,
         ));
     }
-    let fastsim = &mut side.fastsim[out.n_groups];
-    let damage = ctx.settings.damage;
+    let group = out.n_groups;
+    let fastsim = &mut side.fastsim[group];
+    let mut solved = false;
     let t = tangential.patch(key, result.fn_, ctx.material.friction, || {
         let t = fastsim.solve(&contact, &creepage, speed)?;
-        let mut sum = DamageSum::new(damage, speed);
-        if damage.element_wise() {
-            fastsim.friction_elements(|e| sum.add(e));
-        }
+        solved = true;
         Ok::<_, InputError>(PatchTangential {
             normal_force: result.fn_,
             key,
             solution: StripFastsimResult::from(&t),
             tangential: nalgebra::Vector3::zeros(),
-            damage: sum.finish(),
         })
     })?;
-    result.set_tangential(&t.solution);
-    result.set_damage(&t.damage, speed);
+    if solved {
+        side.field_key[group] = Some(key);
+    }
+    side.group_key[group] = key;
+    result.set_tangential(&t.solution, speed);
     let tangential = planar_tangential(side.sigma, gamma, result.fx, result.fy);
     Ok(store_patch(side.sigma, result, weight, tangential, out))
 }

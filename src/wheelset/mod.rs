@@ -48,7 +48,7 @@ pub use regions::Slot;
 
 use nalgebra::Vector3;
 
-use crate::damage::{fatigue, DamageParams, PatchDamage};
+use crate::damage::{fatigue, DamageParams, DamageSum, PatchDamage};
 use crate::error::InputError;
 use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::profile::Profile;
@@ -221,26 +221,26 @@ pub struct PatchResult {
 
 impl PatchResult {
     /// Takes the tangential solution's forces (contact axes), adhesion fraction, frictional
-    /// power and largest traction.
-    fn set_tangential(&mut self, t: &StripFastsimResult) {
+    /// power and largest traction, and its Tγ at the rolling speed `speed` [m/s].
+    fn set_tangential(&mut self, t: &StripFastsimResult, speed: f64) {
         self.fx = t.fx;
         self.fy = t.fy;
         self.mz = t.mz;
         self.adhesion_fraction = t.adhesion_fraction;
         self.frictional_power = t.frictional_power;
         self.max_traction = t.max_traction;
-    }
-
-    /// Takes the damage of the patch's fields and its Tγ at rolling speed `speed` [m/s].
-    fn set_damage(&mut self, d: &PatchDamage, speed: f64) {
-        self.wheel_wear_rate = d.wheel_wear_rate;
-        self.rail_wear_rate = d.rail_wear_rate;
-        self.fatigue_index_local = d.fatigue_index_local;
         self.t_gamma = if speed > 0.0 {
-            self.frictional_power / speed
+            t.frictional_power / speed
         } else {
             0.0
         };
+    }
+
+    /// Takes the damage of the patch's tangential field.
+    fn set_damage(&mut self, d: &PatchDamage) {
+        self.wheel_wear_rate = d.wheel_wear_rate;
+        self.rail_wear_rate = d.rail_wear_rate;
+        self.fatigue_index_local = d.fatigue_index_local;
     }
 }
 
@@ -434,6 +434,11 @@ struct Side {
     n_ellipses: usize,
     /// For each entry of `SideResult::groups` of a strip model, its patch in `strips`.
     strip_of_group: [Option<usize>; MAX_GROUPS],
+    /// For each entry of `SideResult::groups`, its patch's key ([`reuse::PatchTangential::key`]),
+    /// and for each tangential solver (`fastsim` or `strip_fastsim`, by index) the key of the
+    /// patch whose field it holds from this step (the damage pass, [`patch_damage`]).
+    group_key: [usize; MAX_GROUPS],
+    field_key: [Option<usize>; MAX_GROUPS],
     /// For each entry of `SideResult::groups`, the laterals (wheelset frame) its load lies
     /// between: a Hertz patch's group's bounds, a strip patch's strips' (for [`regions`]).
     part_bounds: [(f64, f64); MAX_GROUPS],
@@ -511,6 +516,8 @@ impl Wheelset {
                 ); MAX_GROUPS],
                 n_ellipses: 0,
                 strip_of_group: [None; MAX_GROUPS],
+                group_key: [0; MAX_GROUPS],
+                field_key: [None; MAX_GROUPS],
                 part_bounds: [(0.0, 0.0); MAX_GROUPS],
                 slots: [None; MAX_PATCHES],
                 scratch: Some(Box::default()),
@@ -758,6 +765,38 @@ pub fn derailment_quotient(sigma: f64, force: [f64; 3]) -> f64 {
     }
 }
 
+/// The damage of each of the step's patches (`out.groups`) from the tangential field its solver
+/// holds (`strip_model`: the strip solvers', else FASTSIM's on the ellipses), once per step
+/// after the creep passes: its wear rates (scaled to the patch's own Tγ: a pass that reused a
+/// recorded solution scaled it, and a patch's group weight shares it) and its largest local
+/// fatigue index. Nothing with `wearModel` 0.
+fn patch_damage(side: &mut Side, params: &DamageParams, strip_model: bool, out: &mut SideResult) {
+    if !params.element_wise() {
+        return;
+    }
+    for g in 0..out.n_groups {
+        let patch = &mut out.groups[g];
+        let key = side.group_key[g];
+        let Some(h) = side.field_key.iter().position(|k| *k == Some(key)) else {
+            continue;
+        };
+        // The speed the patch's Tγ was taken at (Archard's sliding velocities); where the patch
+        // dissipates nothing no element slips and the speed does not matter.
+        let speed = if patch.t_gamma > 0.0 {
+            patch.frictional_power / patch.t_gamma
+        } else {
+            0.0
+        };
+        let mut sum = DamageSum::new(*params, speed);
+        if strip_model {
+            side.strip_fastsim[h].friction_elements(|e| sum.add(e));
+        } else {
+            side.fastsim[h].friction_elements(|e| sum.add(e));
+        }
+        patch.set_damage(&sum.finish(patch.t_gamma));
+    }
+}
+
 fn solve_side(
     side: &mut Side,
     ctx: &Context,
@@ -786,6 +825,7 @@ fn solve_side(
         .map(|c| c.gap)
         .fold(f64::INFINITY, f64::min);
     let strip_model = side.strips.is_some();
+    side.field_key = [None; MAX_GROUPS];
     let warm = side.warm.take();
     // The strip models start from the Hertz solution (normal forces only), so that their strips
     // are laid out the same way whatever the previous step was; the warm start shortens that
@@ -804,6 +844,7 @@ fn solve_side(
         }
     }
     check_balance(side.name, load, out)?;
+    patch_damage(side, &ctx.settings.damage, strip_model, out);
     out.derailment_quotient = derailment_quotient(s, out.force);
     regions::report(side, input, ctx.settings.planar_patch, out);
     out.finish_damage(ctx.settings.damage.shear_yield_strength);

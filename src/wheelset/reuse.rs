@@ -31,7 +31,6 @@
 
 use nalgebra::Vector3;
 
-use crate::damage::PatchDamage;
 use crate::geometry::groups::MAX_GROUPS;
 use crate::tangential::strip_fastsim::StripFastsimResult;
 
@@ -55,8 +54,6 @@ pub(super) struct PatchTangential {
     /// The tangential force in track axes [N] (unweighted; strip patches, whose strips have
     /// their own angles).
     pub tangential: Vector3<f64>,
-    /// The damage of its fields (wear rates scale as the frictional power).
-    pub damage: PatchDamage,
 }
 
 impl PatchTangential {
@@ -82,7 +79,6 @@ impl PatchTangential {
                 max_traction: s.max_traction * ratio.cbrt(),
             },
             tangential: self.tangential * force,
-            damage: self.damage.scaled(force),
         })
     }
 }
@@ -218,11 +214,6 @@ mod tests {
                 max_traction: 1e8,
             },
             tangential: Vector3::new(100.0, -190.0, 20.0),
-            damage: PatchDamage {
-                wheel_wear_rate: 1e-7,
-                rail_wear_rate: 2e-7,
-                fatigue_index_local: -0.1,
-            },
         };
         let scaled = p.scaled(8e4, 0.3).unwrap();
         let s = &scaled.solution;
@@ -237,10 +228,6 @@ mod tests {
         assert!((s.max_traction / 2e8 - 1.0).abs() < 1e-14);
         assert_eq!(s.adhesion_fraction, 0.4);
         assert!((scaled.tangential.z / (20.0 * f) - 1.0).abs() < 1e-14);
-        // Wear as the frictional power; the local fatigue index kept.
-        assert!((scaled.damage.wheel_wear_rate / (1e-7 * f) - 1.0).abs() < 1e-14);
-        assert!((scaled.damage.rail_wear_rate / (2e-7 * f) - 1.0).abs() < 1e-14);
-        assert_eq!(scaled.damage.fatigue_index_local, -0.1);
         assert!(p.scaled(0.0, 0.3).is_none());
         // The exponent's ends: the linear theory and full slip.
         assert!((force_exponent(0.0) - 2.0 / 3.0).abs() < 1e-15);

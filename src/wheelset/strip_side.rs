@@ -33,7 +33,6 @@ use super::kinematics::{
 };
 use super::reuse::{PatchTangential, Tangential, TangentialMemo};
 use super::{store_patch, Context, PatchResult, Side, SideResult, WheelsetError, WheelsetInput};
-use crate::damage::DamageSum;
 use crate::error::InputError;
 use crate::geometry::groups::{group_bounds, groups_at, MAX_GROUPS};
 use crate::geometry::search::{ContactPlane, ContactPoint, StripPoints, WheelOnRail};
@@ -521,6 +520,7 @@ pub(super) fn evaluate_strips(
         match strip_patch_result(side, ctx, input, patch, &summary, dz, at, &mut tangential) {
             Ok((result, tangential, normal_upward)) => {
                 side.strip_of_group[out.n_groups] = Some(index);
+                side.group_key[out.n_groups] = index;
                 let lateral = &patch.points.lateral;
                 side.part_bounds[out.n_groups] = (lateral[0], lateral[patch.geom.len() - 1]);
                 upward += store_patch(side.sigma, result, patch.weight, tangential, out);
@@ -607,8 +607,7 @@ pub(super) fn strip_patch_result(
         weight: 1.0,
         ..PatchResult::default()
     };
-    result.set_tangential(&t.solution);
-    result.set_damage(&t.damage, speed);
+    result.set_tangential(&t.solution, speed);
     if ctx.strips.planar {
         // In the patch's axes at this pass's angle (a reused solution's vector was summed in
         // the axes of the pass that solved it).
@@ -696,10 +695,7 @@ fn solve_strip_tangential(
     } else {
         solver.solve(&side.tangential_strips[..n], mu, speed)
     };
-    let mut damage = DamageSum::new(settings.damage, speed);
-    if settings.damage.element_wise() {
-        solver.friction_elements(&side.tangential_strips[..n], |e| damage.add(e));
-    }
+    side.field_key[slot] = Some(key);
     // Forces: planar — all strips in the patch's axes; non-planar — each strip's in its own.
     let mut tangential = Vector3::zeros();
     let mut fy_patch = 0.0;
@@ -723,7 +719,6 @@ fn solve_strip_tangential(
         key,
         solution: StripFastsimResult { fy: fy_patch, ..t },
         tangential,
-        damage: damage.finish(),
     })
 }
 

@@ -274,8 +274,12 @@ pub struct FrictionElement {
     pub area: f64,
     /// Normal pressure p [Pa].
     pub pressure: f64,
-    /// Magnitude of the tangential traction |q| [Pa].
-    pub traction: f64,
+    /// Squared magnitude of the tangential traction |q|² [Pa²] (its root is taken only where
+    /// needed).
+    pub traction_sq: f64,
+    /// An upper bound of |q| [Pa]: the traction bound μp of a FASTSIM element, ∞ where none is
+    /// known.
+    pub bound: f64,
     /// Magnitude of the slip |s|: sliding distance per distance rolled [-] (0 in adhesion).
     /// |q| |s| is the frictional power per unit area and rolling speed (local Tγ/A) [Pa].
     pub slip: f64,
@@ -438,35 +442,45 @@ impl StripMarch {
     }
 
     /// Replays a march whose tractions `px`, `py` and slip flags `slipping` are stored (the
-    /// outputs of [`StripMarch::run`] or [`StripMarch::run_group`] with the same `step_x`):
-    /// `visit(i, |s|)` for every element, |s| = |S|/Δx the sliding distance per distance rolled
-    /// of its slip displacement S = L (p − p*) (0 in adhesion) — the terms of the frictional
-    /// power, recomputed from the field instead of kept during the march.
+    /// outputs of [`StripMarch::run`] or [`StripMarch::run_group`] with the same `step_x` and
+    /// bound `shape`): `visit(i, |q|², μp, |s|)` for every element, |q| its traction, μp its
+    /// bound and |s| = |S|/Δx the sliding distance per distance rolled of its slip displacement
+    /// S = L (p − p*) (0 in adhesion) — the terms of the frictional power, recomputed from the
+    /// field instead of kept during the march.
     pub(crate) fn slips(
         &self,
         step_x: f64,
-        px: &[f64],
-        py: &[f64],
-        slipping: &[bool],
-        mut visit: impl FnMut(usize, f64),
+        shape: &[f64],
+        (px, py, slipping): (&[f64], &[f64], &[bool]),
+        mut visit: impl FnMut(usize, f64, f64, f64),
     ) {
         let [lx, ly] = self.slip_flexibility;
-        let (mut prev_x, mut prev_y) = (0.0_f64, 0.0_f64);
+        let per_length = 1.0 / self.dx;
+        let n = px.len().min(py.len()).min(slipping.len()).min(shape.len());
+        // The element ahead's traction (none ahead of the leading one).
+        let (mut ahead_x, mut ahead_y) = (0.0_f64, 0.0_f64);
         let mut fraction = self.lead_fraction;
-        for i in (0..px.len().min(py.len()).min(slipping.len())).rev() {
+        let elements = px[..n]
+            .iter()
+            .zip(&py[..n])
+            .zip(&slipping[..n])
+            .zip(&shape[..n]);
+        for (i, (((&qx, &qy), &slips), &shape_factor)) in elements.enumerate().rev() {
             let f = fraction;
             fraction = 1.0;
-            let (_, step_y, _) = self.element(i, f, 0.0);
-            let slip = if slipping[i] {
-                let sx = lx * (px[i] - (prev_x - f * step_x));
-                let sy = ly * (py[i] - (prev_y - step_y));
-                sx.hypot(sy) / self.dx
+            let traction_sq = qx * qx + qy * qy;
+            let bound = self.bound_scale * shape_factor;
+            if slips {
+                let (_, step_y, _) = self.element(i, f, shape_factor);
+                let sx = lx * (qx - (ahead_x - f * step_x));
+                let sy = ly * (qy - (ahead_y - step_y));
+                let slip = (sx * sx + sy * sy).sqrt() * per_length;
+                visit(i, traction_sq, bound, slip);
             } else {
-                0.0
-            };
-            visit(i, slip);
-            prev_x = px[i];
-            prev_y = py[i];
+                visit(i, traction_sq, bound, 0.0);
+            }
+            ahead_x = qx;
+            ahead_y = qy;
         }
     }
 
@@ -959,18 +973,22 @@ impl Fastsim {
                 ..self.last_march
             };
             let row = j * nx + first..j * nx + end;
-            let (px, py) = (&self.px[row.clone()], &self.py[row.clone()]);
-            let shape = &self.shape[row.clone()];
+            let field = (
+                &self.px[row.clone()],
+                &self.py[row.clone()],
+                &self.slipping[row.clone()],
+            );
+            let shape = &self.shape[row];
             m.slips(
                 xi_step - phi_step * y,
-                px,
-                py,
-                &self.slipping[row],
-                |i, slip| {
+                shape,
+                field,
+                |i, traction_sq, bound, slip| {
                     visit(&FrictionElement {
                         area,
                         pressure: self.last_peak_pressure * shape[i],
-                        traction: px[i].hypot(py[i]),
+                        traction_sq,
+                        bound,
                         slip: slip * self.last_power_factor,
                     });
                 },
@@ -1722,7 +1740,7 @@ mod tests {
                 for (xi, eta, phi) in [(3e-4, -2e-4, 0.0), (1e-3, 0.0, 0.5), (1e6, 0.0, 0.0)] {
                     let r = f.solve(&c, &Creepage { xi, eta, phi }, 7.0).unwrap();
                     let mut sum = 0.0;
-                    f.friction_elements(|e| sum += e.traction * e.slip * e.area);
+                    f.friction_elements(|e| sum += e.traction_sq.sqrt() * e.slip * e.area);
                     let power = 7.0 * sum;
                     assert!(
                         (power - r.frictional_power).abs() <= 1e-12 * r.frictional_power,
