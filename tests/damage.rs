@@ -10,6 +10,7 @@
 //!   function is the function of the sum, so only rounding separates them.
 //! * Archard's wear goes as 1/H: the wheel's and the rail's rates are in the ratio of the
 //!   hardnesses (no element reaches the seizure region p > 0.8 H here).
+//! * The wear rates spread across the wheel's and the rail's profiles add up to the wheel's.
 //! * The wear model changes no force: `wearModel` 0 and 1 give the same wheel forces bit for
 //!   bit, and 0 gives no wear and no local fatigue index.
 
@@ -126,6 +127,15 @@ fn damage_outputs_follow_their_definitions_on_a_hunting_wheelset() {
             ws.solve(&hunting_input(step), &mut out)
                 .unwrap_or_else(|e| panic!("{ctx}: {e}"));
             dissipated += check_side(&out.left, k, &ctx) + check_side(&out.right, k, &ctx);
+            // The wear spread across the profiles is the wheel's wear rate.
+            for (rates, side) in ws.wear_rates().into_iter().zip([&out.left, &out.right]) {
+                let (wheel, rail) = (rates.wheel.total(), rates.rail.total());
+                assert!(
+                    rel(wheel, side.wheel_wear_rate) < 1e-9,
+                    "{ctx}: {wheel} vs {side:?}"
+                );
+                assert!(rel(rail, side.rail_wear_rate) < 1e-9, "{ctx}");
+            }
         }
         assert!(dissipated > 0.0, "{model:?} {tangential:?}");
     }
@@ -226,7 +236,7 @@ fn patch_sums_follow_the_functions_element_by_element() {
         let r = fastsim.solve(&contact, &creepage, speed).unwrap();
         let mut sum = DamageSum::new(params, speed);
         let (mut independent, mut local, mut dissipated) = (0.0, f64::NEG_INFINITY, 0.0);
-        fastsim.friction_elements(|e| {
+        fastsim.friction_elements(|_, e| {
             sum.add(e);
             let q = e.traction_sq.sqrt();
             local = f64::max(local, (q - k) / e.pressure);

@@ -3,13 +3,17 @@
 //! * [`wear`] — the wear functions applied element by element: the USFD Tγ/A function and
 //!   Archard's law with the KTH wear map;
 //! * [`fatigue`] — Ekberg's surface fatigue index (patch and local forms) and the Whole Life Rail
-//!   Model's damage per wheel pass.
+//!   Model's damage per wheel pass;
+//! * [`profile`] — wear distributions across the wheel's and the rail's profiles;
+//! * [`record`] — wear accumulated over a run, its depths, bytes and CSV file.
 //!
 //! The tangential solvers hand over their traction and slip fields element by element
 //! ([`FrictionElement`]); [`PatchDamage`] sums a patch's wear and keeps its largest local fatigue
 //! index. Equations, coefficients and their sources: docs/theory.md §10.
 
 pub mod fatigue;
+pub mod profile;
+pub mod record;
 pub mod wear;
 
 use crate::error::{require_positive, InputError};
@@ -130,9 +134,10 @@ impl DamageSum {
     }
 
     /// Adds one element of the patch (the per-element work of the damage outputs: a few
-    /// operations for an adhering element, a few more for a slipping one).
+    /// operations for an adhering element, a few more for a slipping one); returns its wear of
+    /// the wheel and of the rail [kg/m] (unscaled, as the sums).
     #[inline]
-    pub fn add(&mut self, e: &FrictionElement) {
+    pub fn add(&mut self, e: &FrictionElement) -> (f64, f64) {
         let p = &self.params;
         let k = p.shear_yield_strength;
         // Only an element whose bound could beat the largest term so far is looked at:
@@ -144,20 +149,24 @@ impl DamageSum {
             }
         }
         if e.slip == 0.0 {
-            return;
+            return (0.0, 0.0);
         }
         // Local Tγ/A [Pa] and the element's Tγ [N].
         let density = e.traction_sq.sqrt() * e.slip;
         let dissipated = density * e.area;
         self.t_gamma += dissipated;
         match p.wear_model {
-            WearModel::Off => {}
+            WearModel::Off => (0.0, 0.0),
             WearModel::Usfd => {
                 if density >= wear::USFD_MILD_LIMIT {
                     let m = wear::usfd_rate(density) * e.area;
                     self.beyond_mild += dissipated;
                     self.wheel += m;
                     self.rail += m;
+                    (m, m)
+                } else {
+                    let m = wear::USFD_MILD_RATE * dissipated;
+                    (m, m)
                 }
             }
             WearModel::ArchardKth => {
@@ -176,6 +185,7 @@ impl DamageSum {
                 let (wheel, rail) = (k(0) * mass, k(1) * mass);
                 self.wheel += wheel;
                 self.rail += rail;
+                (wheel, rail)
             }
         }
     }
@@ -196,13 +206,12 @@ impl DamageSum {
         };
         // The mild regime's elements all at once (W1: linear in Tγ/A); a sum that overflowed
         // saturates (absurd creepages), as the frictional power does.
-        let mild = wear::usfd_rate(0.5 * wear::USFD_MILD_LIMIT) / (0.5 * wear::USFD_MILD_LIMIT);
         let in_mild = match self.params.wear_model {
             WearModel::Usfd => self.t_gamma - self.beyond_mild,
             _ => 0.0,
         };
         let total = |part: f64| {
-            let w = (part + mild * in_mild) * scale;
+            let w = (part + wear::USFD_MILD_RATE * in_mild) * scale;
             if w.is_nan() {
                 0.0
             } else {
@@ -227,6 +236,7 @@ mod tests {
 
     fn element(area: f64, pressure: f64, traction: f64, slip: f64) -> FrictionElement {
         FrictionElement {
+            lateral: 0.0,
             area,
             pressure,
             traction_sq: traction * traction,

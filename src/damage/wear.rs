@@ -50,6 +50,8 @@ pub const STEEL_DENSITY: f64 = 7850.0;
 /// USFD regime limits of Tγ/A [Pa] (10.4 and 77.2 N/mm²).
 pub const USFD_MILD_LIMIT: f64 = 10.4e6;
 pub const USFD_SEVERE_LIMIT: f64 = 77.2e6;
+/// The mild regime's wear per unit Tγ: 5.3 µg/(m mm²) per N/mm² = 5.3e−9 kg/(m N).
+pub const USFD_MILD_RATE: f64 = 5.3e-9;
 
 /// The KTH map's wear coefficients [-] (middles of the published ranges).
 pub const KTH_K1: f64 = 350e-4;
@@ -63,9 +65,10 @@ pub fn usfd_rate(t_gamma_per_area: f64) -> f64 {
     // µg/(m mm²) → kg/(m m²): 1e−9 / 1e−6.
     const SI: f64 = 1e-3;
     let t = t_gamma_per_area * 1e-6;
-    let published = if t_gamma_per_area < USFD_MILD_LIMIT {
-        5.3 * t
-    } else if t_gamma_per_area <= USFD_SEVERE_LIMIT {
+    if t_gamma_per_area < USFD_MILD_LIMIT {
+        return (USFD_MILD_RATE * t_gamma_per_area).max(0.0);
+    }
+    let published = if t_gamma_per_area <= USFD_SEVERE_LIMIT {
         55.0
     } else {
         (61.9 * t - 4778.7).max(55.0)

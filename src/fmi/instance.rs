@@ -541,7 +541,10 @@ impl Instance {
             }
         }
         self.dirty = true;
-        match self.refresh() {
+        let stepped = self
+            .refresh()
+            .and_then(|outcome| self.model.advance(&mut self.values, step).map(|()| outcome));
+        match stepped {
             Ok(outcome) => {
                 self.time = end;
                 self.last_successful_time = end;
@@ -569,8 +572,15 @@ impl Instance {
     }
 
     pub fn terminate(&mut self) -> fmi2Status {
+        let initialized = !self.needs_initialize;
         self.state = State::Terminated;
-        OK
+        if !initialized {
+            return OK;
+        }
+        match self.model.terminate(&self.values) {
+            Ok(()) => OK,
+            Err(e) => self.error(&format!("fmi2Terminate: {}", e.message())),
+        }
     }
 
     /// Back to the freshly instantiated state, start values restored.

@@ -79,6 +79,19 @@ pub trait Model: Send {
         super::derivative::default_step(values, var)
     }
 
+    /// Called by `fmi2DoStep` after the step's [`Model::evaluate`] succeeded, with the step's
+    /// size [s]: what the model accumulates over a run (its outputs may change). Must not
+    /// allocate. The default accumulates nothing.
+    fn advance(&mut self, _values: &mut Values, _step: f64) -> Result<(), ModelError> {
+        Ok(())
+    }
+
+    /// Called by `fmi2Terminate`: what the model writes at the end of a run. The default writes
+    /// nothing.
+    fn terminate(&mut self, _values: &Values) -> Result<(), ModelError> {
+        Ok(())
+    }
+
     /// Appends internal state that is not a variable (warm starts) to an FMU state.
     fn save_state(&self, _out: &mut Vec<u8>) {}
 

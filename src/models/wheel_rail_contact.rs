@@ -4,6 +4,7 @@
 //! is answered with its outputs and a warning (`fmi2Warning`).
 
 use super::{fastsim_settings, set_output};
+use crate::damage::record::WearRecord;
 use crate::damage::{DamageParams, WearModel};
 use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
 use crate::fmi::variables::{IntegerVar, RealVar, Values, VarInfo};
@@ -44,6 +45,7 @@ fn create(context: &InstanceContext) -> Box<dyn Model> {
         solver: None,
         result: WheelsetResult::default(),
         probe_result: WheelsetResult::default(),
+        wear: None,
     })
 }
 
@@ -53,6 +55,8 @@ struct WheelRailContact {
     result: WheelsetResult,
     /// The result of the last [`Model::probe`] (directional derivatives).
     probe_result: WheelsetResult,
+    /// The wear accumulated over the run (with a `wearModel`; docs/theory.md §10.5).
+    wear: Option<WearRecord>,
 }
 
 struct Solver {
@@ -603,6 +607,21 @@ impl Model for WheelRailContact {
         let (wheel, rail) = profiles(values, self.resource_dir.as_deref())?;
         let wheelset = Wheelset::new(&wheel, &rail, settings(values)?)
             .map_err(|e| ModelError::Error(e.to_string()))?;
+        let output = values.string(var::wearOutput);
+        let wear_on = wheelset.settings().damage.element_wise();
+        if !output.is_empty() && !wear_on {
+            return Err(ModelError::Error(format!(
+                "wearOutput = {output:?} needs a wear model: wearModel = {} (0 computes no wear)",
+                values.integer(var::wearModel)
+            )));
+        }
+        self.wear = wear_on.then(|| {
+            let [left, right] = wheelset.wear_rates();
+            WearRecord::new(
+                [[&left.wheel, &left.rail], [&right.wheel, &right.rail]],
+                values.real(var::wheelRadius),
+            )
+        });
         self.solver = Some(Solver {
             wheelset,
             vertical_by_position: values.integer(var::verticalMode) == 2,
@@ -614,9 +633,35 @@ impl Model for WheelRailContact {
     fn evaluate(&mut self, values: &mut Values, _time: f64) -> Result<Evaluation, ModelError> {
         let solver = self.solver.as_mut().ok_or_else(not_initialized)?;
         let input = solver.solve(values, &mut self.result)?;
+        write_wear_record(values, self.wear.as_ref())?;
         Ok(match validity(&self.result) {
             None => Evaluation::Ok,
             Some(implausible) => Evaluation::Warning(implausible.message(&input.vertical)),
+        })
+    }
+
+    /// Adds the step's wear (the rates of its evaluation across the profiles times the distance
+    /// rolled, |vx| × `step`) to the record and writes its summary outputs.
+    fn advance(&mut self, values: &mut Values, step: f64) -> Result<(), ModelError> {
+        let (Some(record), Some(solver)) = (self.wear.as_mut(), self.solver.as_ref()) else {
+            return Ok(());
+        };
+        let [left, right] = solver.wheelset.wear_rates();
+        let rates = [[&left.wheel, &left.rail], [&right.wheel, &right.rail]];
+        record.add(rates, values.real(var::vx).abs() * step);
+        write_wear_record(values, Some(record))
+    }
+
+    /// Writes the wear record to `wearOutput` (when it names a file).
+    fn terminate(&mut self, values: &Values) -> Result<(), ModelError> {
+        let output = values.string(var::wearOutput);
+        let Some(record) = self.wear.as_ref().filter(|_| !output.is_empty()) else {
+            return Ok(());
+        };
+        std::fs::write(output, record.csv()).map_err(|e| {
+            ModelError::Error(format!(
+                "wearOutput = {output:?}: cannot write the wear record: {e}"
+            ))
         })
     }
 
@@ -659,6 +704,9 @@ impl Model for WheelRailContact {
     fn save_state(&self, out: &mut Vec<u8>) {
         if let Some(solver) = &self.solver {
             write_history(solver.wheelset.warm_start(), solver.wheelset.slots(), out);
+            if let Some(record) = &self.wear {
+                record.save(out);
+            }
         }
     }
 
@@ -674,11 +722,57 @@ impl Model for WheelRailContact {
                 ))
             };
         };
-        let (warm, slots) = parse_history(bytes)?;
+        let (history, wear) = bytes.split_at(bytes.len().min(HISTORY_BYTES));
+        let (warm, slots) = parse_history(history)?;
+        match self.wear.as_mut() {
+            Some(record) => record
+                .restore(wear)
+                .map_err(|e| format!("FMU state: {e}"))?,
+            None if !wear.is_empty() => {
+                return Err(format!(
+                    "FMU state holds {} bytes of wear record for an instance without a wear model",
+                    wear.len()
+                ))
+            }
+            None => {}
+        }
         solver.wheelset.set_warm_start(warm);
         solver.wheelset.set_slots(slots);
         Ok(())
     }
+}
+
+/// The wear record's summary outputs (`s.wheelWearMass`, `s.railWearMass`, `s.wheelWearDepthMax`,
+/// `s.railWearDepthMax`); zero without a record.
+fn write_wear_record(values: &mut Values, record: Option<&WearRecord>) -> Result<(), ModelError> {
+    use var::*;
+    let outputs = [
+        [
+            left_wheelWearMass,
+            left_railWearMass,
+            left_wheelWearDepthMax,
+            left_railWearDepthMax,
+        ],
+        [
+            right_wheelWearMass,
+            right_railWearMass,
+            right_wheelWearDepthMax,
+            right_railWearDepthMax,
+        ],
+    ];
+    for (side, vars) in outputs.into_iter().enumerate() {
+        let s = record.map(|r| r.summary(side)).unwrap_or_default();
+        let xs = [
+            s.wheel_mass,
+            s.rail_mass,
+            s.wheel_depth_max,
+            s.rail_depth_max,
+        ];
+        for (v, x) in vars.into_iter().zip(xs) {
+            set_output(values, v, x)?;
+        }
+    }
+    Ok(())
 }
 
 fn not_initialized() -> ModelError {

@@ -188,6 +188,7 @@ pub struct StripFastsim {
     /// for [`StripFastsim::friction_elements`].
     marches: Vec<Option<(StripMarch, f64)>>,
     widths: Vec<f64>,
+    levers: Vec<f64>,
     /// Strip geometry of the last solve (for [`StripFastsim::tractions`]).
     geometry: Vec<(f64, f64, f64)>,
     /// Per-strip sums of the last solve.
@@ -241,6 +242,7 @@ impl StripFastsim {
             last_fastrip: false,
             marches: vec![None; MAX_STRIPS],
             widths: vec![0.0; MAX_STRIPS],
+            levers: vec![0.0; MAX_STRIPS],
             geometry: vec![(0.0, 0.0, 0.0); MAX_STRIPS],
             totals: vec![StripTotals::default(); MAX_STRIPS],
             n_strips: 0,
@@ -540,6 +542,7 @@ impl StripFastsim {
             self.geometry[j] = (strip.x_c, strip.half_length, strip.pmax);
             self.marches[j] = strip_march(strip, self.nx, self.scheme, mu);
             self.widths[j] = strip.width;
+            self.levers[j] = strip.lever;
         }
         self.totals[..n].fill(StripTotals::default());
         n
@@ -623,9 +626,10 @@ impl StripFastsim {
 
 impl StripFastsim {
     /// The elements in contact of the last solve as the damage models see them
-    /// ([`FrictionElement`]): FASTSIM's slip replayed from its field ([`StripMarch::slips`]),
-    /// FaStrip's from its power density (|s| = |q| |S|/(|q| Δx)).
-    pub fn friction_elements(&self, mut visit: impl FnMut(&FrictionElement)) {
+    /// (`visit(strip, element)`, [`FrictionElement`]; the lateral is the strip's lever):
+    /// FASTSIM's slip replayed from its field ([`StripMarch::slips`]), FaStrip's from its power
+    /// density (|s| = |q| |S|/(|q| Δx)).
+    pub fn friction_elements(&self, mut visit: impl FnMut(usize, &FrictionElement)) {
         let nx = self.nx;
         for j in 0..self.n_strips {
             let Some((march, step_x)) = self.marches[j] else {
@@ -635,7 +639,9 @@ impl StripFastsim {
             let (px, py) = (&self.px[row.clone()], &self.py[row.clone()]);
             let area = march.dx * self.widths[j];
             let pmax = self.geometry[j].2;
+            let lateral = self.levers[j];
             let element = |i: usize, traction_sq: f64, bound: f64, slip: f64| FrictionElement {
+                lateral,
                 area,
                 pressure: pmax * self.shape[i],
                 traction_sq,
@@ -651,12 +657,12 @@ impl StripFastsim {
                     } else {
                         0.0
                     };
-                    visit(&element(i, traction_sq, f64::INFINITY, slip));
+                    visit(j, &element(i, traction_sq, f64::INFINITY, slip));
                 }
             } else {
                 let field = (px, py, &self.slipping[row]);
                 march.slips(step_x, &self.shape, field, |i, traction_sq, bound, slip| {
-                    visit(&element(i, traction_sq, bound, slip))
+                    visit(j, &element(i, traction_sq, bound, slip))
                 });
             }
         }
@@ -748,7 +754,7 @@ mod tests {
     /// Σ |q| |s| ΔA over [`StripFastsim::friction_elements`] [N], and the number of elements.
     fn element_power(s: &StripFastsim) -> (f64, usize) {
         let (mut sum, mut count) = (0.0, 0);
-        s.friction_elements(|e| {
+        s.friction_elements(|_, e| {
             assert!(e.slip >= 0.0 && e.traction_sq >= 0.0 && e.pressure > 0.0 && e.area > 0.0);
             // FASTSIM's elements lie within their bound.
             assert!(e.traction_sq.sqrt() <= e.bound * (1.0 + 1e-12));

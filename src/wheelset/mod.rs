@@ -48,7 +48,8 @@ pub use regions::Slot;
 
 use nalgebra::Vector3;
 
-use crate::damage::{fatigue, DamageParams, DamageSum, PatchDamage};
+use crate::damage::profile::WearBins;
+use crate::damage::{fatigue, DamageParams, DamageSum, FrictionElement, PatchDamage};
 use crate::error::InputError;
 use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::profile::Profile;
@@ -439,6 +440,10 @@ struct Side {
     /// patch whose field it holds from this step (the damage pass, [`patch_damage`]).
     group_key: [usize; MAX_GROUPS],
     field_key: [Option<usize>; MAX_GROUPS],
+    /// Per strip of the patch in the damage pass: its wear of the wheel and of the rail [kg/m]
+    /// and its lateral; the wheel's wear rates of the last step across the profiles.
+    strip_wear: Vec<(f64, f64, f64)>,
+    wear: WearRates,
     /// For each entry of `SideResult::groups`, the laterals (wheelset frame) its load lies
     /// between: a Hertz patch's group's bounds, a strip patch's strips' (for [`regions`]).
     part_bounds: [(f64, f64); MAX_GROUPS],
@@ -476,16 +481,25 @@ impl Wheelset {
         }
         let m = settings.material;
         let side = |name, sigma| -> Result<Side, GeometryError> {
+            let geometry = WheelOnRail::new(
+                wheel.clone(),
+                rail,
+                &settings.setup,
+                settings.scan_step,
+                settings.b_min,
+            )?;
+            let wear = {
+                let (w0, w1) = wheel.y_range();
+                let (r0, r1) = geometry.rail().profile().y_range();
+                WearRates {
+                    wheel: WearBins::covering(w0, w1),
+                    rail: WearBins::covering(r0, r1),
+                }
+            };
             Ok(Side {
                 name,
                 sigma,
-                geometry: WheelOnRail::new(
-                    wheel.clone(),
-                    rail,
-                    &settings.setup,
-                    settings.scan_step,
-                    settings.b_min,
-                )?,
+                geometry,
                 fastsim: (0..MAX_GROUPS)
                     .map(|_| Fastsim::new(settings.fastsim))
                     .collect::<Result<_, _>>()?,
@@ -518,6 +532,8 @@ impl Wheelset {
                 strip_of_group: [None; MAX_GROUPS],
                 group_key: [0; MAX_GROUPS],
                 field_key: [None; MAX_GROUPS],
+                strip_wear: vec![(0.0, 0.0, 0.0); MAX_STRIPS.max(settings.fastsim.ny)],
+                wear,
                 part_bounds: [(0.0, 0.0); MAX_GROUPS],
                 slots: [None; MAX_PATCHES],
                 scratch: Some(Box::default()),
@@ -531,6 +547,12 @@ impl Wheelset {
             left: side("left", -1.0)?,
             right: side("right", 1.0)?,
         })
+    }
+
+    /// The wear rates of the last solve spread across the wheel's and the rail's profile, left
+    /// and right wheel ([`WearRates`]; all zero with `wearModel` 0).
+    pub fn wear_rates(&self) -> [&WearRates; 2] {
+        [&self.left.wear, &self.right.wear]
     }
 
     pub fn settings(&self) -> &WheelsetSettings {
@@ -768,12 +790,16 @@ pub fn derailment_quotient(sigma: f64, force: [f64; 3]) -> f64 {
 /// The damage of each of the step's patches (`out.groups`) from the tangential field its solver
 /// holds (`strip_model`: the strip solvers', else FASTSIM's on the ellipses), once per step
 /// after the creep passes: its wear rates (scaled to the patch's own Tγ: a pass that reused a
-/// recorded solution scaled it, and a patch's group weight shares it) and its largest local
-/// fatigue index. Nothing with `wearModel` 0.
+/// recorded solution scaled it, and a patch's group weight shares it), its largest local
+/// fatigue index, and its wear spread strip by strip over the side's distributions across the
+/// wheel's and the rail's profile ([`WearRates`]). Nothing with `wearModel` 0.
 fn patch_damage(side: &mut Side, params: &DamageParams, strip_model: bool, out: &mut SideResult) {
     if !params.element_wise() {
         return;
     }
+    side.wear.wheel.clear();
+    side.wear.rail.clear();
+    let taping = side.geometry.setup().taping_line_offset();
     for g in 0..out.n_groups {
         let patch = &mut out.groups[g];
         let key = side.group_key[g];
@@ -788,13 +814,58 @@ fn patch_damage(side: &mut Side, params: &DamageParams, strip_model: bool, out: 
             0.0
         };
         let mut sum = DamageSum::new(*params, speed);
+        // Each strip's wear and lateral (along e_y from the reference point).
+        let strips = &mut side.strip_wear;
+        strips.fill((0.0, 0.0, 0.0));
+        let mut add = |j: usize, e: &FrictionElement| {
+            let (wheel, rail) = sum.add(e);
+            if let Some(s) = strips.get_mut(j) {
+                *s = (s.0 + wheel, s.1 + rail, e.lateral);
+            }
+        };
         if strip_model {
-            side.strip_fastsim[h].friction_elements(|e| sum.add(e));
+            side.strip_fastsim[h].friction_elements(&mut add);
         } else {
-            side.fastsim[h].friction_elements(|e| sum.add(e));
+            side.fastsim[h].friction_elements(&mut add);
         }
-        patch.set_damage(&sum.finish(patch.t_gamma));
+        let damage = sum.finish(patch.t_gamma);
+        patch.set_damage(&damage);
+        // The strips' wear, scaled as the patch's, at their points on the two profiles.
+        let scale = if sum.t_gamma() > 0.0 {
+            patch.t_gamma / sum.t_gamma()
+        } else {
+            0.0
+        };
+        let wear = &mut side.wear;
+        let strip_patch = side.strips.as_ref().and_then(|s| s.patches().get(key));
+        let ellipse = side.ellipses[..side.n_ellipses].iter().find(|e| e.3 == key);
+        for (j, &(wheel, rail, lateral)) in side.strip_wear.iter().enumerate() {
+            if wheel == 0.0 && rail == 0.0 {
+                continue;
+            }
+            let (y_wheel, y_rail) = match (strip_model, strip_patch, ellipse) {
+                (true, Some(p), _) => (p.points.lateral[j] - taping, p.points.y_rail[j]),
+                (false, _, Some((reference, ..))) => {
+                    // Along the profiles: the contact plane's lateral towards the field side
+                    // (σ e_y), projected by the contact angle.
+                    let d = side.sigma * lateral * reference.contact_angle.cos();
+                    (reference.y_wheel + d, reference.y_rail + d)
+                }
+                _ => continue,
+            };
+            wear.wheel.add(y_wheel, wheel * scale);
+            wear.rail.add(y_rail, rail * scale);
+        }
     }
+}
+
+/// A wheel's wear rates of the last step spread across the profiles: mass per metre rolled in
+/// bins of the wheel profile's lateral coordinate and of the mounted rail's [kg/m per bin]
+/// (`crate::damage::profile`).
+#[derive(Debug, Clone)]
+pub struct WearRates {
+    pub wheel: WearBins,
+    pub rail: WearBins,
 }
 
 fn solve_side(

@@ -270,6 +270,9 @@ pub struct ElementTraction {
 /// (`crate::damage`): its area, pressure, traction and slip.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct FrictionElement {
+    /// Lateral position of the element's strip in the contact plane, along the patch's e_y
+    /// from its reference point [m].
+    pub lateral: f64,
     /// Element area ΔA [m²].
     pub area: f64,
     /// Normal pressure p [Pa].
@@ -950,9 +953,10 @@ impl Fastsim {
 
 impl Fastsim {
     /// The last successful solve's elements in contact as the damage models see them
-    /// ([`FrictionElement`]; nothing after N = 0, an error, or before the first solve). The
-    /// slip is the march's own (its frictional power is V Σ |q| |s| ΔA).
-    pub fn friction_elements(&self, mut visit: impl FnMut(&FrictionElement)) {
+    /// (`visit(strip, element)`, [`FrictionElement`]; nothing after N = 0, an error, or before
+    /// the first solve). The slip is the march's own (its frictional power is
+    /// V Σ |q| |s| ΔA).
+    pub fn friction_elements(&self, mut visit: impl FnMut(usize, &FrictionElement)) {
         if !self.has_field {
             return;
         }
@@ -984,13 +988,17 @@ impl Fastsim {
                 shape,
                 field,
                 |i, traction_sq, bound, slip| {
-                    visit(&FrictionElement {
-                        area,
-                        pressure: self.last_peak_pressure * shape[i],
-                        traction_sq,
-                        bound,
-                        slip: slip * self.last_power_factor,
-                    });
+                    visit(
+                        j,
+                        &FrictionElement {
+                            lateral: y,
+                            area,
+                            pressure: self.last_peak_pressure * shape[i],
+                            traction_sq,
+                            bound,
+                            slip: slip * self.last_power_factor,
+                        },
+                    );
                 },
             );
         }
@@ -1740,7 +1748,7 @@ mod tests {
                 for (xi, eta, phi) in [(3e-4, -2e-4, 0.0), (1e-3, 0.0, 0.5), (1e6, 0.0, 0.0)] {
                     let r = f.solve(&c, &Creepage { xi, eta, phi }, 7.0).unwrap();
                     let mut sum = 0.0;
-                    f.friction_elements(|e| sum += e.traction_sq.sqrt() * e.slip * e.area);
+                    f.friction_elements(|_, e| sum += e.traction_sq.sqrt() * e.slip * e.area);
                     let power = 7.0 * sum;
                     assert!(
                         (power - r.frictional_power).abs() <= 1e-12 * r.frictional_power,
