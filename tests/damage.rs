@@ -165,12 +165,9 @@ fn the_wear_model_changes_no_force() {
 
 #[test]
 fn archard_wear_goes_as_one_over_the_hardness() {
-    let params = DamageParams {
-        wear_model: WearModel::ArchardKth,
-        wheel_hardness: 5.2e9,
-        rail_hardness: 2.6e9,
-        ..DamageParams::default()
-    };
+    let mut params = DamageParams::default();
+    params.wear_model = WearModel::ArchardKth;
+    params.wheel_hardness = 2.0 * params.rail_hardness;
     for (model, tangential) in [
         (NormalModel::Hertz, TangentialModel::ModelDefault),
         (NormalModel::CoupledStrips, TangentialModel::FastripCoupled),
@@ -213,15 +210,8 @@ fn patch_sums_follow_the_functions_element_by_element() {
     // brute-force maximum over its elements (the sum skips elements whose bound cannot beat the
     // maximum: no difference beyond rounding).
     use railcontact::damage::DamageSum;
-    use railcontact::tangential::fastsim::{Creepage, EllipticContact, Fastsim, FastsimSettings};
-    let contact = EllipticContact {
-        a: 8e-3,
-        b: 4e-3,
-        normal_force: 82_000.0,
-        shear_modulus: 82e9,
-        nu: 0.28,
-        mu: 0.3,
-    };
+    use railcontact::tangential::fastsim::{Creepage, Fastsim, FastsimSettings};
+    let contact = common::FASTSIM_CONTACT;
     let mut fastsim = Fastsim::new(FastsimSettings::default()).unwrap();
     let speed = 20.0;
     let params = usfd();

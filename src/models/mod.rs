@@ -79,6 +79,18 @@ fn option_of<T: Copy>(name: &str, code: i32, options: &[T]) -> Result<T, ModelEr
     })
 }
 
+/// Writes the output values `xs` to the variables `vars`, in order ([`set_output`]).
+pub(crate) fn set_outputs<const N: usize>(
+    values: &mut Values,
+    vars: [RealVar; N],
+    xs: [f64; N],
+) -> Result<(), ModelError> {
+    for (v, x) in vars.into_iter().zip(xs) {
+        set_output(values, v, x)?;
+    }
+    Ok(())
+}
+
 /// Writes an output value; a non-finite one is an internal error (outputs are never NaN).
 pub(crate) fn set_output(values: &mut Values, v: RealVar, x: f64) -> Result<(), ModelError> {
     if !x.is_finite() {

@@ -3,7 +3,7 @@
 //! physics: [`crate::wheelset`]. A state beyond elastic half-space contact ([`crate::wheelset::validity`])
 //! is answered with its outputs and a warning (`fmi2Warning`).
 
-use super::{fastsim_settings, set_output};
+use super::{fastsim_settings, set_outputs};
 use crate::damage::record::WearRecord;
 use crate::damage::{DamageParams, WearModel};
 use crate::fmi::model::{Evaluation, InstanceContext, Model, ModelError, ModelInfo};
@@ -562,9 +562,7 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
         side.rail_wear_rate,
         side.rcf_damage,
     ];
-    for (v, x) in totals.into_iter().zip(total_values) {
-        set_output(values, v, x)?;
-    }
+    set_outputs(values, totals, total_values)?;
     for k in 0..MAX_PATCHES {
         let p = &side.patches[k];
         let xs = [
@@ -595,9 +593,7 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
             p.fatigue_index,
             p.fatigue_index_local,
         ];
-        for (v, x) in patch_vars(right, k).into_iter().zip(xs) {
-            set_output(values, v, x)?;
-        }
+        set_outputs(values, patch_vars(right, k), xs)?;
     }
     Ok(())
 }
@@ -768,9 +764,7 @@ fn write_wear_record(values: &mut Values, record: Option<&WearRecord>) -> Result
             s.wheel_depth_max,
             s.rail_depth_max,
         ];
-        for (v, x) in vars.into_iter().zip(xs) {
-            set_output(values, v, x)?;
-        }
+        set_outputs(values, vars, xs)?;
     }
     Ok(())
 }

@@ -856,15 +856,8 @@ impl Fastsim {
         };
         // Strips j and ny − 1 − j are mirror images (same elements, y → −y): march them together.
         for j in 0..ny.div_ceil(2) {
-            let (first, end) = self.strip_range[j];
-            if first == end {
+            let Some((y, m, (first, end))) = self.strip(j, (a, b), &march) else {
                 continue;
-            }
-            let y = b * normalised_centre(j, ny);
-            let m = StripMarch {
-                x_first: -a + (first as f64 + 0.5) * dx,
-                lead_fraction: self.lead_fraction[j],
-                ..march
             };
             let mirror = ny - 1 - j;
             let shape = &self.shape[j * nx + first..j * nx + end];
@@ -952,6 +945,27 @@ impl Fastsim {
 }
 
 impl Fastsim {
+    /// Strip `j` of the grid on the ellipse of semi-axes `(a, b)`: its lateral y, its march
+    /// (`march` started at its first contact element, with its leading step) and its contact
+    /// elements `first..end`; `None` where it has none.
+    fn strip(
+        &self,
+        j: usize,
+        (a, b): (f64, f64),
+        march: &StripMarch,
+    ) -> Option<(f64, StripMarch, (usize, usize))> {
+        let (first, end) = self.strip_range[j];
+        if first == end {
+            return None;
+        }
+        let m = StripMarch {
+            x_first: -a + (first as f64 + 0.5) * march.dx,
+            lead_fraction: self.lead_fraction[j],
+            ..*march
+        };
+        Some((b * normalised_centre(j, self.settings.ny), m, (first, end)))
+    }
+
     /// The last successful solve's elements in contact as the damage models see them
     /// (`visit(strip, element)`, [`FrictionElement`]; nothing after N = 0, an error, or before
     /// the first solve). The slip is the march's own (its frictional power is
@@ -966,15 +980,8 @@ impl Fastsim {
         let area = dx * 2.0 * b / ny as f64;
         let (xi_step, phi_step) = self.last_step_x;
         for j in 0..ny {
-            let (first, end) = self.strip_range[j];
-            if first == end {
+            let Some((y, m, (first, end))) = self.strip(j, (a, b), &self.last_march) else {
                 continue;
-            }
-            let y = b * normalised_centre(j, ny);
-            let m = StripMarch {
-                x_first: -a + (first as f64 + 0.5) * dx,
-                lead_fraction: self.lead_fraction[j],
-                ..self.last_march
             };
             let row = j * nx + first..j * nx + end;
             let field = (
