@@ -1,6 +1,6 @@
 //! The `railcontact` command's library: case files ([`case`]), one evaluation as JSON ([`solve`]),
-//! the lateral-shift table ([`sweep`]), the equivalent conicity ([`conicity`]) and the JSON
-//! layout ([`json`]). The binary (`main.rs`)
+//! the lateral-shift table ([`sweep`]), the equivalent conicity ([`conicity`]), the wear loop's
+//! profile update ([`wear`]) and the JSON layout ([`json`]). The binary (`main.rs`)
 //! parses the command line and draws the report; the fuzz target `fuzz/fuzz_targets/case.rs`
 //! reads and applies case files through [`case`] and solves them through [`solve`].
 //!
@@ -12,6 +12,7 @@ pub mod conicity;
 pub mod json;
 pub mod solve;
 pub mod sweep;
+pub mod wear;
 
 use railcontact::fmi::model::{InstanceContext, Model, ModelError};
 use railcontact::fmi::variables::{Values, VarInfo};

@@ -78,7 +78,38 @@ enum Command {
     Solve(SolveArgs),
     Sweep(SweepArgs),
     Conicity(ConicityArgs),
+    Wear(WearArgs),
     Report(report::ReportArgs),
+}
+
+/// Updates the case's profiles by the wear that runs of the FMU recorded
+///
+/// Reads wear records (the CSV files the FMU writes to `wearOutput` with a `wearModel`), sums
+/// them, scales their depths to a running distance, smooths them, limits the largest depth, and
+/// writes the worn wheel and rail profiles as two-column text in mm (the wheel in its profile's
+/// frame, the rail in the mounted frame: use it with railInclination = 0). The written files are
+/// checked by loading them as the element does. Prints a JSON summary.
+#[derive(Debug, Args)]
+#[command(after_help = format!("{CASE_HELP}\n\n{EXIT_CODES}"))]
+struct WearArgs {
+    /// The case file the records were made with ('-': standard input; none: the start values)
+    #[arg(value_name = "CASE.json")]
+    case: Option<String>,
+    /// A wear record (repeat for several runs; their masses and distances add up)
+    #[arg(long = "record", value_name = "FILE", required = true)]
+    records: Vec<PathBuf>,
+    /// The running distance the update stands for [m], > 0
+    #[arg(long, value_name = "METRES")]
+    distance: f64,
+    /// The largest depth one update removes [m] (the distance is reduced to it)
+    #[arg(long, value_name = "METRES", default_value_t = 1e-4)]
+    max_depth: f64,
+    /// Standard deviation of the Gaussian smoothing of the depths [m]
+    #[arg(long, value_name = "METRES", default_value_t = 1e-3)]
+    smoothing: f64,
+    /// Directory of the worn profiles (worn_wheel.txt, worn_rail.txt; created if missing)
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
 }
 
 /// Evaluates the model once and prints every output and each patch's strips as JSON
@@ -271,8 +302,25 @@ fn run(command: Command) -> Result<i32, Failure> {
             })
         }
         Command::Conicity(a) => run_conicity(&a),
+        Command::Wear(a) => run_wear(&a),
         Command::Report(a) => report::run(&a),
     }
+}
+
+fn run_wear(a: &WearArgs) -> Result<i32, Failure> {
+    let values = case::load(a.case.as_deref())?;
+    let options = railcontact_cli::wear::WearOptions {
+        records: a.records.clone(),
+        distance: a.distance,
+        max_depth: a.max_depth,
+        smoothing: a.smoothing,
+        out: a.out.clone(),
+    };
+    let doc = railcontact_cli::wear::update(&values, &options)?;
+    let text =
+        json::to_text(&doc).map_err(|e| Failure::Error(format!("cannot write the JSON: {e}")))?;
+    println!("{text}");
+    Ok(0)
 }
 
 fn run_conicity(a: &ConicityArgs) -> Result<i32, Failure> {

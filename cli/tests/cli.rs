@@ -671,3 +671,81 @@ fn loaded_conicity_follows_the_elements_rolling_radii() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("--load: load = -5"), "{}", stderr(&o));
 }
+
+/// Writes the wear record of a closed-loop-like run (the FMU's model in-process: a wheelset
+/// oscillating laterally by `amplitude` [m] at 2 Hz, kinematic creepages at 30 m/s, `steps` of
+/// 1 ms) to `record`, for the case `case_file`.
+fn record_run(case_file: &Path, amplitude: f64, steps: usize) {
+    use railcontact::models::wheel_rail_contact::generated::var;
+    let mut values = railcontact_cli::case::load(Some(case_file.to_str().unwrap())).unwrap();
+    let mut model = railcontact_cli::model(&values).unwrap();
+    let w = 2.0 * std::f64::consts::PI * 2.0;
+    for k in 0..steps {
+        let t = k as f64 * 1e-3;
+        values.set_real(var::y, amplitude * (w * t).sin());
+        values.set_real(var::vy, amplitude * w * (w * t).cos());
+        model.evaluate(&mut values, t).unwrap();
+        model.advance(&mut values, 1e-3).unwrap();
+    }
+    model.terminate(&values).unwrap();
+}
+
+#[test]
+fn wear_turns_records_into_worn_profiles_that_load_and_run() {
+    let dir = std::env::temp_dir().join(format!("railcontact-wear-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let record = dir.join("run.csv");
+    let case = temp_file(
+        "wear_case.json",
+        &format!(
+            r#"{{"wearModel": 1, "wearOutput": {:?}, "normalModel": 6, "vx": 30.0, "omega": 65.3}}"#,
+            record.to_str().unwrap()
+        ),
+    );
+    record_run(&case, 3e-3, 300);
+    let out = dir.join("worn");
+    let wear = |records: &[&Path], distance: &str, case: Option<&Path>| {
+        let mut args = vec!["wear".to_string()];
+        args.extend(case.map(|c| c.to_str().unwrap().to_string()));
+        for r in records {
+            args.extend(["--record".to_string(), r.to_str().unwrap().to_string()]);
+        }
+        args.extend(["--distance", distance, "--out", out.to_str().unwrap()].map(String::from));
+        run(&args.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let o = wear(&[&record, &record], "1e9", Some(&case));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let doc = parse(&stdout(&o));
+    // 1e9 m would wear far deeper than the default limit of 0.1 mm: the distance is reduced.
+    let depth = doc["wheelDepthMax"]
+        .as_f64()
+        .unwrap()
+        .max(doc["railDepthMax"].as_f64().unwrap());
+    assert!((depth - 1e-4).abs() < 1e-12, "{doc}");
+    assert!(doc["distance"].as_f64().unwrap() < 1e9);
+    assert!((doc["recordedDistance"].as_f64().unwrap() - 2.0 * 0.3 * 30.0).abs() < 1e-9);
+    // The worn profiles run in the element: a sweep of the same oscillation without a Discard.
+    let worn_case = temp_file(
+        "worn_case.json",
+        &format!(
+            r#"{{"wheelProfile": {:?}, "railProfile": {:?}, "railInclination": 0.0, "normalModel": 6}}"#,
+            out.join("worn_wheel.txt").to_str().unwrap(),
+            out.join("worn_rail.txt").to_str().unwrap()
+        ),
+    );
+    let s = sweep(
+        &worn_case,
+        &["--from", "-0.003", "--to", "0.003", "--step", "0.001"],
+    );
+    assert_eq!(s.status.code(), Some(0), "{}", stderr(&s));
+    assert_eq!(sweep_rows(&stdout(&s)).len(), 7);
+    // Errors name the file.
+    let missing = dir.join("missing.csv");
+    let o = wear(&[&missing], "1000", None);
+    assert_eq!(o.status.code(), Some(1));
+    assert_mentions(
+        &stderr(&o),
+        &[missing.to_str().unwrap(), "cannot read the wear record"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

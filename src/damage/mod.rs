@@ -5,7 +5,8 @@
 //! * [`fatigue`] — Ekberg's surface fatigue index (patch and local forms) and the Whole Life Rail
 //!   Model's damage per wheel pass;
 //! * [`profile`] — wear distributions across the wheel's and the rail's profiles;
-//! * [`record`] — wear accumulated over a run, its depths, bytes and CSV file.
+//! * [`record`] — wear accumulated over a run, its depths, bytes and CSV file;
+//! * [`update`] — the wear-prediction loop's profile update from such records.
 //!
 //! The tangential solvers hand over their traction and slip fields element by element
 //! ([`FrictionElement`]); [`PatchDamage`] sums a patch's wear and keeps its largest local fatigue
@@ -14,6 +15,7 @@
 pub mod fatigue;
 pub mod profile;
 pub mod record;
+pub mod update;
 pub mod wear;
 
 use crate::error::{require_positive, InputError};
