@@ -73,17 +73,29 @@ impl WearBins {
         }
         let last = self.mass.len() - 1;
         let u = ((y - self.origin) / WEAR_BIN).clamp(0.0, last as f64);
-        let i = (u.floor() as usize).min(last - 1);
+        // u ≥ 0: the cast truncates as floor would.
+        let i = (u as usize).min(last - 1);
         let f = u - i as f64;
         self.mass[i] += mass * (1.0 - f);
         self.mass[i + 1] += mass * f;
     }
 
-    /// Adds `factor` × `other` bin by bin (the same layout).
-    pub fn add_scaled(&mut self, other: &WearBins, factor: f64) {
+    /// Adds `factor` × `other` bin by bin (the same layout); returns the sum added and the
+    /// largest bin afterwards.
+    pub fn add_scaled(&mut self, other: &WearBins, factor: f64) -> (f64, f64) {
+        let (mut added, mut largest) = (0.0, 0.0_f64);
         for (m, o) in self.mass.iter_mut().zip(&other.mass) {
-            *m += o * factor;
+            let a = o * factor;
+            added += a;
+            *m += a;
+            largest = largest.max(*m);
         }
+        (added, largest)
+    }
+
+    /// The largest bin.
+    pub fn largest(&self) -> f64 {
+        self.mass.iter().copied().fold(0.0, f64::max)
     }
 }
 

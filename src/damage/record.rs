@@ -22,6 +22,9 @@ use std::fmt::Write as _;
 pub struct WearRecord {
     /// [left, right] × [wheel, rail] mass per bin [kg].
     bins: [[WearBins; 2]; 2],
+    /// [left, right] × [wheel, rail]: the bins' sum and their largest [kg] (kept as steps are
+    /// added, so that the summary costs nothing per step).
+    totals: [[(f64, f64); 2]; 2],
     /// Distance rolled [m].
     distance: f64,
     /// Nominal rolling radius r0 [m] (the wheel's depth).
@@ -48,6 +51,7 @@ impl WearRecord {
         };
         Self {
             bins: rates.map(|side| side.map(empty)),
+            totals: [[(0.0, 0.0); 2]; 2],
             distance: 0.0,
             wheel_radius,
         }
@@ -59,9 +63,11 @@ impl WearRecord {
         if !(distance > 0.0 && distance.is_finite()) {
             return;
         }
-        for (mine, step) in self.bins.iter_mut().zip(rates) {
-            for (m, s) in mine.iter_mut().zip(step) {
-                m.add_scaled(s, distance);
+        for ((mine, step), totals) in self.bins.iter_mut().zip(rates).zip(&mut self.totals) {
+            for ((m, s), (total, largest)) in mine.iter_mut().zip(step).zip(totals) {
+                let (added, top) = m.add_scaled(s, distance);
+                *total += added;
+                *largest = top;
             }
         }
         self.distance += distance;
@@ -93,18 +99,12 @@ impl WearRecord {
 
     /// Masses and largest depths of wheel `side` (0 left, 1 right).
     pub fn summary(&self, side: usize) -> WearSummary {
-        let [wheel, rail] = &self.bins[side];
-        let deepest = |body: usize, b: &WearBins| {
-            b.mass()
-                .iter()
-                .map(|&m| self.depth(body, m))
-                .fold(0.0, f64::max)
-        };
+        let [(wheel, wheel_top), (rail, rail_top)] = self.totals[side];
         WearSummary {
-            wheel_mass: wheel.total(),
-            rail_mass: rail.total(),
-            wheel_depth_max: deepest(0, wheel),
-            rail_depth_max: deepest(1, rail),
+            wheel_mass: wheel,
+            rail_mass: rail,
+            wheel_depth_max: self.depth(0, wheel_top),
+            rail_depth_max: self.depth(1, rail_top),
         }
     }
 
@@ -134,11 +134,15 @@ impl WearRecord {
         s
     }
 
-    /// Appends the record's bytes (distance, then every bin's mass; little-endian f64) to
-    /// `out`. The layout is the record's own: [`WearRecord::restore`] needs a record of the same
-    /// profiles.
+    /// Appends the record's bytes (distance, the running totals, then every bin's mass;
+    /// little-endian f64) to `out`. The layout is the record's own: [`WearRecord::restore`]
+    /// needs a record of the same profiles.
     pub fn save(&self, out: &mut Vec<u8>) {
         out.extend_from_slice(&self.distance.to_le_bytes());
+        for (total, largest) in self.totals.iter().flatten() {
+            out.extend_from_slice(&total.to_le_bytes());
+            out.extend_from_slice(&largest.to_le_bytes());
+        }
         for side in &self.bins {
             for b in side {
                 for m in b.mass() {
@@ -150,7 +154,7 @@ impl WearRecord {
 
     /// Bytes of [`WearRecord::save`].
     pub fn saved_len(&self) -> usize {
-        8 * (1 + self.bins.iter().flatten().map(WearBins::len).sum::<usize>())
+        8 * (1 + 8 + self.bins.iter().flatten().map(WearBins::len).sum::<usize>())
     }
 
     /// Restores what [`WearRecord::save`] wrote; an error (nothing changed) when the length
@@ -173,6 +177,10 @@ impl WearRecord {
             return Err("wear record holds a non-finite value".into());
         }
         self.distance = values.next().unwrap_or(0.0);
+        for (total, largest) in self.totals.iter_mut().flatten() {
+            *total = values.next().unwrap_or(0.0);
+            *largest = values.next().unwrap_or(0.0);
+        }
         for side in &mut self.bins {
             for b in side {
                 for (m, v) in b.mass_mut().iter_mut().zip(&mut values) {

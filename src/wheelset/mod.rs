@@ -814,20 +814,33 @@ fn patch_damage(side: &mut Side, params: &DamageParams, strip_model: bool, out: 
             0.0
         };
         let mut sum = DamageSum::new(*params, speed);
-        // Each strip's wear and lateral (along e_y from the reference point).
+        // Each strip's wear and lateral (along e_y from the reference point), summed in
+        // registers while the elements of one strip come and stored when the next begins; the
+        // buffer is zero on entry and cleared again over the strips used.
         let strips = &mut side.strip_wear;
-        strips.fill((0.0, 0.0, 0.0));
-        let mut add = |j: usize, e: &FrictionElement| {
-            let (wheel, rail) = sum.add(e);
+        let mut used = 0;
+        let mut current = (usize::MAX, (0.0, 0.0, 0.0));
+        let mut store = |(j, strip): (usize, (f64, f64, f64))| {
             if let Some(s) = strips.get_mut(j) {
-                *s = (s.0 + wheel, s.1 + rail, e.lateral);
+                *s = strip;
+                used = used.max(j + 1);
             }
         };
+        let add = |j: usize, e: &FrictionElement| {
+            let (wheel, rail) = sum.add(e);
+            if j != current.0 {
+                store(std::mem::replace(&mut current, (j, (0.0, 0.0, e.lateral))));
+            }
+            let s = &mut current.1;
+            s.0 += wheel;
+            s.1 += rail;
+        };
         if strip_model {
-            side.strip_fastsim[h].friction_elements(&mut add);
+            side.strip_fastsim[h].friction_elements(add);
         } else {
-            side.fastsim[h].friction_elements(&mut add);
+            side.fastsim[h].friction_elements(add);
         }
+        store(current);
         let damage = sum.finish(patch.t_gamma);
         patch.set_damage(&damage);
         // The strips' wear, scaled as the patch's, at their points on the two profiles.
@@ -839,7 +852,8 @@ fn patch_damage(side: &mut Side, params: &DamageParams, strip_model: bool, out: 
         let wear = &mut side.wear;
         let strip_patch = side.strips.as_ref().and_then(|s| s.patches().get(key));
         let ellipse = side.ellipses[..side.n_ellipses].iter().find(|e| e.3 == key);
-        for (j, &(wheel, rail, lateral)) in side.strip_wear.iter().enumerate() {
+        for (j, strip) in side.strip_wear[..used].iter_mut().enumerate() {
+            let (wheel, rail, lateral) = std::mem::take(strip);
             if wheel == 0.0 && rail == 0.0 {
                 continue;
             }
