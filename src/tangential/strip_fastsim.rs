@@ -182,6 +182,9 @@ pub struct StripFastsim {
     slipping: Vec<bool>,
     /// FaStrip's frictional power density |q| |S| per element [N/m] (its solves only).
     power: Vec<f64>,
+    /// FASTSIM's slip displacement |S| per element [m], where recorded
+    /// ([`StripFastsim::record_slips`]; empty otherwise).
+    slip: Vec<f64>,
     /// Whether the last solve was FaStrip's ([`StripFastsim::friction_elements`]).
     last_fastrip: bool,
     /// Per strip of the last solve: its march and x step (`None`: no traction) and its width,
@@ -239,6 +242,7 @@ impl StripFastsim {
             py: vec![0.0; MAX_STRIPS * nx],
             slipping: vec![false; MAX_STRIPS * nx],
             power: vec![0.0; MAX_STRIPS * nx],
+            slip: Vec::new(),
             last_fastrip: false,
             marches: vec![None; MAX_STRIPS],
             widths: vec![0.0; MAX_STRIPS],
@@ -253,6 +257,13 @@ impl StripFastsim {
             coupling_strips: Vec::new(),
             gains: vec![(1.0, 1.0); MAX_STRIPS],
         })
+    }
+
+    /// Keeps each element's slip from every FASTSIM solve on (for
+    /// [`StripFastsim::friction_elements`], which then needs no replay of the march): one more
+    /// store per element.
+    pub fn record_slips(&mut self) {
+        self.slip = vec![0.0; self.px.len()];
     }
 
     /// Sizes the buffers of FaStrip's coupled coefficients for patches of up to `n_strips`
@@ -314,7 +325,8 @@ impl StripFastsim {
             let (i, march, step_x) = group[done];
             let row = i * nx..(i + 1) * nx;
             let rows = std::slice::from_ref(&row);
-            let [mut out] = strip_outs(&mut self.px, &mut self.py, &mut self.slipping, rows);
+            let field = (&mut self.px[..], &mut self.py[..], &mut self.slipping[..]);
+            let [mut out] = strip_outs(field, &mut self.slip, rows);
             let sums = march.run(step_x, &self.shape, &mut out);
             self.totals[i] = totals(&strips[i], &march, &sums);
         }
@@ -485,8 +497,8 @@ impl StripFastsim {
         for (r, &(j, ..)) in rows.iter_mut().zip(group) {
             *r = j * nx..(j + 1) * nx;
         }
-        let mut out: [StripOut<'_>; MAX_GROUP] =
-            strip_outs(&mut self.px, &mut self.py, &mut self.slipping, &rows[..n]);
+        let field = (&mut self.px[..], &mut self.py[..], &mut self.slipping[..]);
+        let mut out: [StripOut<'_>; MAX_GROUP] = strip_outs(field, &mut self.slip, &rows[..n]);
         let mut marches = [&group[0].1; MAX_GROUP];
         let mut step_x = [0.0; MAX_GROUP];
         for (k, (_, march, step)) in group.iter().enumerate() {
@@ -659,6 +671,14 @@ impl StripFastsim {
                     };
                     visit(j, &element(i, traction_sq, f64::INFINITY, slip));
                 }
+            } else if !self.slip.is_empty() {
+                // Recorded in the march: |s| = |S|/Δx.
+                let per_length = 1.0 / march.dx;
+                for (i, &slip) in self.slip[row].iter().enumerate() {
+                    let traction_sq = px[i] * px[i] + py[i] * py[i];
+                    let bound = march.bound_scale * self.shape[i];
+                    visit(j, &element(i, traction_sq, bound, slip * per_length));
+                }
             } else {
                 let field = (px, py, &self.slipping[row]);
                 march.slips(step_x, &self.shape, field, |i, traction_sq, bound, slip| {
@@ -784,9 +804,16 @@ mod tests {
         for (xi, eta, phi) in cases {
             let k = Creepage { xi, eta, phi };
             let strips = hertz_strips(30, k);
-            for scheme in [MarchScheme::Contact, MarchScheme::Midpoint] {
+            for (scheme, record) in [
+                (MarchScheme::Contact, false),
+                (MarchScheme::Midpoint, false),
+                (MarchScheme::Midpoint, true),
+            ] {
                 let mut s = StripFastsim::new(24, scheme).unwrap();
                 s.reserve_coupled(30);
+                if record {
+                    s.record_slips();
+                }
                 for run in 0..3 {
                     let r = match run {
                         0 => s.solve(&strips, MU, speed),

@@ -500,8 +500,15 @@ impl Wheelset {
                 name,
                 sigma,
                 geometry,
+                // With the damage outputs on, the marches keep each element's slip.
                 fastsim: (0..MAX_GROUPS)
-                    .map(|_| Fastsim::new(settings.fastsim))
+                    .map(|_| {
+                        let mut solver = Fastsim::new(settings.fastsim)?;
+                        if settings.damage.element_wise() {
+                            solver.record_slips();
+                        }
+                        Ok::<_, InputError>(solver)
+                    })
                     .collect::<Result<_, _>>()?,
                 strips: StripSide::new(settings.normal_model),
                 strip_fastsim: if settings.normal_model == NormalModel::Hertz {
@@ -513,6 +520,9 @@ impl Wheelset {
                                 StripFastsim::new(settings.fastsim.nx, settings.fastsim.scheme)?;
                             if settings.tangential == TangentialModel::FastripCoupled {
                                 solver.reserve_coupled(settings.strips);
+                            }
+                            if settings.damage.element_wise() {
+                                solver.record_slips();
                             }
                             Ok::<_, InputError>(solver)
                         })

@@ -410,6 +410,8 @@ pub(crate) struct StripOut<'s> {
     pub px: &'s mut [f64],
     pub py: &'s mut [f64],
     pub slipping: &'s mut [bool],
+    /// Each element's slip displacement |S| [m] (0 in adhesion) where recorded; empty when not.
+    pub slip: &'s mut [f64],
 }
 
 /// Sums over elements (tractions in Pa, not yet multiplied by the element area).
@@ -562,11 +564,18 @@ impl StripMarch {
             *py = trial_y * f;
             let sx = lx * (*px - trial_x);
             let sy = ly * (*py - trial_y);
-            s.sum_power += bound * (sx * sx + sy * sy).sqrt();
+            let slip = (sx * sx + sy * sy).sqrt();
+            s.sum_power += bound * slip;
+            if let Some(r) = o.slip.get_mut(i) {
+                *r = slip;
+            }
         } else {
             *px = trial_x;
             *py = trial_y;
             s.n_adhesion += 1;
+            if let Some(r) = o.slip.get_mut(i) {
+                *r = 0.0;
+            }
         }
         o.px[i] = *px;
         o.py[i] = *py;
@@ -589,21 +598,24 @@ pub(crate) const MAX_GROUP: usize = packed::MAX_GROUP;
 pub(crate) const MAX_GROUP: usize = 8;
 
 /// The output slices of strips whose elements are `rows` of the row-major buffers `px`, `py`,
-/// `slipping` (disjoint ranges in increasing order, at most `N`), in that order; entries beyond
-/// `rows` are empty.
+/// `slipping` and `slip` (disjoint ranges in increasing order, at most `N`), in that order;
+/// entries beyond `rows` are empty, and so are all slip slices where `slip` is (not recorded).
 pub(crate) fn strip_outs<'b, const N: usize>(
-    mut px: &'b mut [f64],
-    mut py: &'b mut [f64],
-    mut slipping: &'b mut [bool],
+    (mut px, mut py, mut slipping): (&'b mut [f64], &'b mut [f64], &'b mut [bool]),
+    mut slip: &'b mut [f64],
     rows: &[std::ops::Range<usize>],
 ) -> [StripOut<'b>; N] {
     let mut out: [StripOut<'b>; N] = std::array::from_fn(|_| StripOut::default());
     let mut offset = 0;
+    let record = !slip.is_empty();
     for (o, r) in out.iter_mut().zip(rows) {
         let (skip, len) = (r.start - offset, r.end - r.start);
         o.px = take_row(&mut px, skip, len);
         o.py = take_row(&mut py, skip, len);
         o.slipping = take_row(&mut slipping, skip, len);
+        if record {
+            o.slip = take_row(&mut slip, skip, len);
+        }
         offset = r.end;
     }
     out
@@ -694,6 +706,9 @@ pub struct Fastsim {
     last_march: StripMarch,
     last_step_x: (f64, f64),
     last_power_factor: f64,
+    /// Each element's slip displacement |S| of the last solve [m], where recorded
+    /// ([`Fastsim::record_slips`]; empty otherwise).
+    slip: Vec<f64>,
     has_field: bool,
     /// [`centre_pressure_resultant`] of this grid.
     centre_pressure_ratio: f64,
@@ -759,9 +774,16 @@ impl Fastsim {
             last_march: StripMarch::default(),
             last_step_x: (0.0, 0.0),
             last_power_factor: 1.0,
+            slip: Vec::new(),
             has_field: false,
             centre_pressure_ratio: ratio,
         })
+    }
+
+    /// Keeps each element's slip from every solve on (for [`Fastsim::friction_elements`],
+    /// which then needs no replay of the march): one more store per element.
+    pub fn record_slips(&mut self) {
+        self.slip = vec![0.0; self.px.len()];
     }
 
     /// CONTACT's bound resultant on this grid relative to N (the factor the bound is divided
@@ -863,13 +885,14 @@ impl Fastsim {
             let shape = &self.shape[j * nx + first..j * nx + end];
             // The contact elements of strip j and of its mirror (j < mirror).
             let rows = [j, mirror].map(|row| row * nx + first..row * nx + end);
-            let (px, py, slipping) = (&mut self.px, &mut self.py, &mut self.slipping);
+            let field = (&mut self.px[..], &mut self.py[..], &mut self.slipping[..]);
+            let slip = &mut self.slip[..];
             if mirror == j {
-                let [mut out] = strip_outs(px, py, slipping, &rows[..1]);
+                let [mut out] = strip_outs(field, slip, &rows[..1]);
                 let s0 = m.run(step_x_at(y), shape, &mut out);
                 add(s0, y);
             } else {
-                let mut out: [StripOut<'_>; 2] = strip_outs(px, py, slipping, &rows);
+                let mut out: [StripOut<'_>; 2] = strip_outs(field, slip, &rows);
                 let sums = StripMarch::run_group(
                     &[&m, &m],
                     &[step_x_at(y), step_x_at(-y)],
@@ -989,7 +1012,27 @@ impl Fastsim {
                 &self.py[row.clone()],
                 &self.slipping[row.clone()],
             );
-            let shape = &self.shape[row];
+            let shape = &self.shape[row.clone()];
+            if !self.slip.is_empty() {
+                // Recorded in the march: |s| = |S|/Δx.
+                let per_length = self.last_power_factor / dx;
+                let (px, py) = (field.0, field.1);
+                for (i, &slip) in self.slip[row].iter().enumerate() {
+                    let bound = m.bound_scale * shape[i];
+                    visit(
+                        j,
+                        &FrictionElement {
+                            lateral: y,
+                            area,
+                            pressure: self.last_peak_pressure * shape[i],
+                            traction_sq: px[i] * px[i] + py[i] * py[i],
+                            bound,
+                            slip: slip * per_length,
+                        },
+                    );
+                }
+                continue;
+            }
             m.slips(
                 xi_step - phi_step * y,
                 shape,
@@ -1103,6 +1146,7 @@ mod tests {
                     px: &mut qx,
                     py: &mut qy,
                     slipping: &mut qs,
+                    slip: &mut [],
                 };
                 let s = marches[k].run(step_x[k], &shape, &mut out);
                 (qx, qy, qs, s)
@@ -1129,7 +1173,12 @@ mod tests {
                 .chunks_mut(nx)
                 .zip(py.chunks_mut(nx))
                 .zip(slip.chunks_mut(nx))
-                .map(|((px, py), slipping)| StripOut { px, py, slipping })
+                .map(|((px, py), slipping)| StripOut {
+                    px,
+                    py,
+                    slipping,
+                    slip: &mut [],
+                })
                 .collect();
             let refs: Vec<&StripMarch> = marches[..size].iter().collect();
             let sums = StripMarch::run_group(&refs, &step_x[..size], &shape, &mut out);
@@ -1752,16 +1801,47 @@ mod tests {
                     scheme,
                 })
                 .unwrap();
+                let mut recorded = f.clone();
+                recorded.record_slips();
                 for (xi, eta, phi) in [(3e-4, -2e-4, 0.0), (1e-3, 0.0, 0.5), (1e6, 0.0, 0.0)] {
-                    let r = f.solve(&c, &Creepage { xi, eta, phi }, 7.0).unwrap();
+                    let k = Creepage { xi, eta, phi };
+                    let r = f.solve(&c, &k, 7.0).unwrap();
+                    assert_eq!(
+                        recorded.solve(&c, &k, 7.0).unwrap(),
+                        r,
+                        "recording changes nothing"
+                    );
                     let mut sum = 0.0;
-                    f.friction_elements(|_, e| sum += e.traction_sq.sqrt() * e.slip * e.area);
+                    let mut replayed = Vec::new();
+                    f.friction_elements(|j, e| {
+                        sum += e.traction_sq.sqrt() * e.slip * e.area;
+                        replayed.push((j, *e));
+                    });
+                    // The replay visits a strip's elements from its leading edge, the record in
+                    // storage order.
+                    replayed.sort_by_key(|a| a.0);
+                    for chunk in replayed.chunk_by_mut(|a, b| a.0 == b.0) {
+                        chunk.reverse();
+                    }
                     let power = 7.0 * sum;
                     assert!(
                         (power - r.frictional_power).abs() <= 1e-12 * r.frictional_power,
                         "{bound:?} {scheme:?} ξ {xi}: {power} vs {}",
                         r.frictional_power
                     );
+                    // The recorded slips are the replayed ones (to the replay's rounding).
+                    let mut n = 0;
+                    recorded.friction_elements(|_, e| {
+                        let p = replayed[n].1;
+                        let scale = p.slip.max(1e-300);
+                        assert!((e.slip - p.slip).abs() <= 1e-9 * scale, "{e:?} {p:?}");
+                        assert_eq!(
+                            (e.traction_sq, e.bound, e.area),
+                            (p.traction_sq, p.bound, p.area)
+                        );
+                        n += 1;
+                    });
+                    assert_eq!(n, replayed.len());
                 }
             }
         }

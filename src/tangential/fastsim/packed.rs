@@ -221,6 +221,8 @@ impl<V: Packed> Lanes<V> {
         let trial_sq = trial_x.mul(trial_x).add(trial_y.mul(trial_y));
         let slip = trial_sq.greater(bound.mul(bound));
         let slip_bits = slip.mask_bits();
+        // Each lane's slip displacement |S| (0 where it adheres: its scale is 1).
+        let mut slip_len = V::splat(0.0);
         if slip_bits == 0 {
             self.px = trial_x;
             self.py = trial_y;
@@ -231,7 +233,8 @@ impl<V: Packed> Lanes<V> {
             let sx = self.lx.mul(self.px.sub(trial_x));
             let sy = self.ly.mul(self.py.sub(trial_y));
             let slip_sq = sx.mul(sx).add(sy.mul(sy));
-            self.sum_power = self.sum_power.add(bound.mul(slip_sq.sqrt()));
+            slip_len = slip_sq.sqrt();
+            self.sum_power = self.sum_power.add(bound.mul(slip_len));
         }
         let (mut px, mut py) = ([0.0; 4], [0.0; 4]);
         self.px.store(&mut px);
@@ -240,6 +243,14 @@ impl<V: Packed> Lanes<V> {
             o.px[i] = px[lane];
             o.py[i] = py[lane];
             o.slipping[i] = slip_bits & (1 << lane) != 0;
+        }
+        // The slips where recorded (all lanes' or none: `strip_outs`).
+        if !out[0].slip.is_empty() {
+            let mut lens = [0.0; 4];
+            slip_len.store(&mut lens);
+            for (lane, o) in out.iter_mut().enumerate().take(V::LANES) {
+                o.slip[i] = lens[lane];
+            }
         }
         self.n_adhesion = self.n_adhesion.add(V::select(slip, V::splat(0.0), one));
         self.sum_px = self.sum_px.add(self.px);
