@@ -175,7 +175,7 @@ impl DamageSum {
                 // Mass per metre rolled per unit k/H: ρ p |s| ΔA; the map's k by the sliding
                 // velocity, k1 where the pressure exceeds 0.8 H of that body.
                 let mass = e.pressure * e.slip * e.area * wear::STEEL_DENSITY;
-                let sliding = wear::kth_coefficient(0.0, e.slip * self.speed, 1.0);
+                let sliding = wear::kth_sliding_coefficient(e.slip * self.speed);
                 let k = |body: usize| {
                     let k = if e.pressure > self.seizure[body] {
                         wear::KTH_K1

@@ -92,11 +92,6 @@ impl WearBins {
         }
         (added, largest)
     }
-
-    /// The largest bin.
-    pub fn largest(&self) -> f64 {
-        self.mass.iter().copied().fold(0.0, f64::max)
-    }
 }
 
 #[cfg(test)]

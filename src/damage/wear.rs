@@ -81,7 +81,14 @@ pub fn usfd_rate(t_gamma_per_area: f64) -> f64 {
 pub fn kth_coefficient(pressure: f64, sliding_velocity: f64, hardness: f64) -> f64 {
     if pressure > 0.8 * hardness {
         KTH_K1
-    } else if sliding_velocity < 0.2 {
+    } else {
+        kth_sliding_coefficient(sliding_velocity)
+    }
+}
+
+/// The KTH map's coefficient below its seizure pressure, by the sliding velocity [m/s].
+pub fn kth_sliding_coefficient(sliding_velocity: f64) -> f64 {
+    if sliding_velocity < 0.2 {
         KTH_K2
     } else if sliding_velocity <= 0.7 {
         KTH_K3
