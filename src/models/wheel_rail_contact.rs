@@ -442,7 +442,6 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
         normal_model: model_code(
             "normalModel",
             values.integer(var::normalModel),
-            6,
             NormalModel::from_code,
         )?,
         strips: usize::try_from(values.integer(var::nStrips)).unwrap_or(0),
@@ -451,7 +450,6 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
         tangential: model_code(
             "tangentialModel",
             values.integer(var::tangentialModel),
-            4,
             TangentialModel::from_code,
         )?,
         planar_patch: values.boolean(var::planarPatch),
@@ -462,14 +460,12 @@ pub fn settings(values: &Values) -> Result<WheelsetSettings, ModelError> {
 
 /// The damage outputs' parameters (each range-checked when set).
 fn damage_params(values: &Values) -> Result<DamageParams, ModelError> {
-    let code = values.integer(var::wearModel);
-    let wear_model = WearModel::from_code(code).ok_or_else(|| {
-        ModelError::Error(format!(
-            "wearModel = {code} is outside the allowed range [0, 2]"
-        ))
-    })?;
     let params = DamageParams {
-        wear_model,
+        wear_model: model_code(
+            "wearModel",
+            values.integer(var::wearModel),
+            WearModel::from_code,
+        )?,
         wheel_hardness: values.real(var::wheelHardness),
         rail_hardness: values.real(var::railHardness),
         shear_yield_strength: values.real(var::shearYieldStrength),
@@ -480,17 +476,17 @@ fn damage_params(values: &Values) -> Result<DamageParams, ModelError> {
     Ok(params)
 }
 
-/// The model that the integer parameter `name` selects by `code` (`from_code`, valid 1 to
-/// `max`); any other code is an error.
+/// The model that the integer parameter `name` selects by `code` (`from_code`); any other code
+/// is an error quoting the variable table's range.
 fn model_code<T>(
     name: &str,
     code: i32,
-    max: i32,
     from_code: impl Fn(i32) -> Option<T>,
 ) -> Result<T, ModelError> {
     from_code(code).ok_or_else(|| {
+        let allowed = INFO.variable(name).map_or("", |v| v.allowed);
         ModelError::Error(format!(
-            "{name} = {code} is outside the allowed range [1, {max}]"
+            "{name} = {code} is outside the allowed range {allowed}"
         ))
     })
 }

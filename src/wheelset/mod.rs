@@ -216,7 +216,8 @@ pub struct PatchResult {
     pub fatigue_index_local: f64,
     /// Weight of the patch in the wheel's forces (1 but where two contact descriptions are
     /// blended, `crate::geometry::groups`); `fn_`, `fx`, `fy`, `mz`, `area`,
-    /// `frictional_power`, `t_gamma` and the wear rates include it [-].
+    /// `frictional_power` and `t_gamma` include it, and the wear rates through `t_gamma` (they
+    /// are scaled to it, [`patch_damage`]) [-].
     pub weight: f64,
 }
 
@@ -775,8 +776,6 @@ fn store_patch(
         &mut result.area,
         &mut result.frictional_power,
         &mut result.t_gamma,
-        &mut result.wheel_wear_rate,
-        &mut result.rail_wear_rate,
     ] {
         *v *= weight;
     }
