@@ -22,7 +22,7 @@ cargo test --workspace
 echo "== continuity sweeps and random-walk soaks at full resolution (release)"
 cargo test --release --test continuity --test soak
 echo "== exact half-space comparisons in release (the rolling oracle's Newton systems)"
-cargo test --release -p railcontact-halfspace --test halfspace_oracle --test wheel_forces
+cargo test --release -p railcontact-halfspace --test halfspace_oracle --test wheel_forces --test frictional_power
 echo "== fmu-pack (release build against glibc 2.17, pack, default experiments)"
 cargo run --release -p fmu-pack -- --glibc 2.17
 echo "== Python host tests"

@@ -311,3 +311,72 @@ fn full_sliding_reaches_mu_n() {
         assert_eq!(p.adhesion_fraction, 0.0);
     }
 }
+
+/// The configuration whose frictional power is closest to the exact theory (docs/theory.md
+/// §10.7; `halfspace/tests/frictional_power.rs` at +2 mm): ANALYN with its FASTSIM pairing.
+const POWER_BEST: (NormalModel, TangentialModel) =
+    (NormalModel::Analyn, TangentialModel::ModelDefault);
+
+#[test]
+fn frictional_power_against_the_exact_theory() {
+    // CONTACT's frictional power on its creep curves (creepage ≥ 0.002, with and without the
+    // rolling spin) at its rolling speed `veloc`; ours at the same speed. Our power is the work of
+    // the tractions on the rigid slip (docs/theory.md §4.5), so on a planar patch it is
+    // −V (ξ Fx + η Fy + φ Mz) of the patch's own forces to rounding (checked), and its error is
+    // the forces' plus CONTACT's first-order discretisation (its 0.2 mm power is 3.4 % below its
+    // own forces' work at 0.002, 0.7 % at 0.01).
+    let rows = read_csv("reference/central/creep_curves_dy0.csv");
+    let mut opts = options();
+    for t in TangentialModel::ALL {
+        opts.push((NormalModel::CoupledStrips, t, false));
+        opts.push((NormalModel::Analyn, t, false));
+    }
+    for (model, t, planar) in opts {
+        let mut ws = wheelset(model, t, planar);
+        let mut errors = Vec::new();
+        for r in &rows {
+            let c = row_creepage(r);
+            if c.xi.abs().max(c.eta.abs()) < 0.002 - 1e-6 {
+                continue;
+            }
+            let speed = r["veloc_mm_s"] * 1e-3;
+            let input = WheelsetInput {
+                y: 0.0,
+                yaw: 0.0,
+                roll: 0.0,
+                vertical: Vertical::Loads { left: Q, right: Q },
+                creepages: Creepages::Prescribed {
+                    creepage: c,
+                    vx: speed,
+                },
+            };
+            let mut out = WheelsetResult::default();
+            ws.solve(&input, &mut out).expect("central case solves");
+            let p = right_total(&out);
+            if planar {
+                let work = -speed * (c.xi * p.fx + c.eta * p.fy + c.phi * p.mz);
+                assert!(
+                    (p.frictional_power - work).abs() <= 1e-9 * work,
+                    "{} {}: {} vs {work}",
+                    model.name(),
+                    t.name(),
+                    p.frictional_power
+                );
+            }
+            errors.push(p.frictional_power / -r["fric_power_W"] - 1.0);
+        }
+        assert_eq!(errors.len(), 12);
+        let (worst, mean, line) = common::error_summary(&errors);
+        println!(
+            "{:>14} {:>18} planar={planar:5}: worst {:4.1} % mean {:4.1} % |{line}",
+            model.name(),
+            t.name(),
+            100.0 * worst,
+            100.0 * mean
+        );
+        if (model, t) == POWER_BEST {
+            // Required: within 5 % at every point, 2.5 % on average (measured 4.9 %, 1.5 %).
+            assert!(worst < 0.05 && mean < 0.025, "worst {worst}, mean {mean}");
+        }
+    }
+}

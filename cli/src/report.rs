@@ -20,6 +20,7 @@
 //! the reference's creepages only (the error table does not change). Progress: one line per
 //! figure on stderr.
 
+mod dissipation;
 mod figures;
 pub mod plot;
 mod reference;
@@ -28,7 +29,7 @@ mod tables;
 mod wheel;
 
 use crate::{workspace_root, Failure};
-use figures::{Creep, Outlines, Pressure, ReportFigure, ShiftRuns, Shifts, Spin};
+use figures::{Creep, Dissipation, Outlines, Pressure, ReportFigure, ShiftRuns, Shifts, Spin};
 use plot::render;
 use railcontact::fmi::variables::Values;
 use railcontact::models::wheel_rail_contact::{generated::var, INFO};
@@ -59,7 +60,7 @@ const RAIL_FILE: &str = "MBench_UIC60_v3.prr";
 const CENTRAL_LOAD: f64 = 78_500.0;
 const CENTRAL_SPEED: f64 = 2.0;
 /// Number of figures (for the progress lines).
-const FIGURES: usize = 6;
+const FIGURES: usize = 7;
 /// The vendored data, relative to the workspace root.
 const REFERENCE_DIR: &str = "tests/data/reference";
 const PROFILE_DIR: &str = "tests/data/profiles";
@@ -241,7 +242,14 @@ pub(crate) fn run(args: &ReportArgs) -> Result<i32, Failure> {
     };
     let (creep_own, creep_options) = creep_figure(&study, &mut out, grid)?;
     let t = Instant::now();
-    let wheel_forces = wheel::section(&study)?;
+    let panels = dissipation::panels(&study)?;
+    let figure = Dissipation {
+        panels: &panels,
+        setup: out.setup.clone(),
+    };
+    out.figure(ReportFigure::Dissipation(figure), t)?;
+    let t = Instant::now();
+    let wheel_forces = wheel::section(&study)? + &dissipation::section(&panels);
     eprintln!(
         "railcontact report: wheel forces against the exact solution in {:.2} s",
         t.elapsed().as_secs_f64()
@@ -495,6 +503,9 @@ const CAPTIONS: [&str; FIGURES] = [
     "STRIPES-B and STRIPES-A&B at lateral shifts −1, 0, +1, +2 mm: outline, strip pressure, \
      lateral curvature B.",
     "Creep-force curves Fx(ξ) and Fy(η) over μN, planar patches.",
+    "Frictional power density across the patch (Tγ per unit width) at lateral shifts 0 and \
+     +2 mm, ξ = 0.002 with the rolling spin: every normal model with its own tangential pairing \
+     against the exact steady rolling solution.",
 ];
 
 impl Document<'_> {
@@ -518,8 +529,10 @@ impl Document<'_> {
              (`tangentialModel` 1–5) against CONTACT, which solves Kalker's exact half-space \
              theory, on the central case of `tests/data/README.md`: normal contact (patch area, \
              maximum pressure, maximum pressure per strip), pure spin (forces, spin moment, slip \
-             zone) and creep-force curves; and the wheel's forces over lateral shifts against the \
-             exact solution of the whole wheel (\"Wheel forces\"). CONTACT's numbers are read from \
+             zone) and creep-force curves; the wheel's forces over lateral shifts against the \
+             exact solution of the whole wheel (\"Wheel forces\"); and the frictional power \
+             across the patch against the exact steady rolling solution (\"Frictional power \
+             across the patch\"). CONTACT's numbers are read from \
              its solutions in the reference directory; railcontact's are computed by the FMU's own \
              code at its default settings.\n"
         );

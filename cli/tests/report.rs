@@ -25,13 +25,14 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// The figures the report writes, each as .svg and .png.
-const FIGURES: [&str; 6] = [
+const FIGURES: [&str; 7] = [
     "patch_outlines",
     "pressure_per_strip",
     "pure_spin_planar",
     "pure_spin_nonplanar",
     "lateral_shifts",
     "creep_curves",
+    "power_density",
 ];
 
 const Q: f64 = 78_500.0;

@@ -78,6 +78,16 @@ pub struct RollingSolution {
     pub traction_y: Vec<f64>,
     /// Whether a loaded element slips.
     pub slipping: Vec<bool>,
+    /// Element slip s = w − ∂u/∂x along x and y (sliding distance per distance rolled, 0 in
+    /// adhesion to the tolerance) [-].
+    pub slip_x: Vec<f64>,
+    pub slip_y: Vec<f64>,
+    /// Dissipation per distance rolled, −Σ q·s ΔA (the frictional power over the rolling
+    /// speed, Tγ) [N].
+    pub t_gamma: f64,
+    /// Work of the tractions on the rigid slip per distance rolled, −Σ q·w ΔA [N]: equal to
+    /// `t_gamma` in the continuum (steady rolling), the two differ by the discretisation.
+    pub rigid_work: f64,
     /// Force Σ q_x ΔA [N].
     pub fx: f64,
     /// Force Σ q_y ΔA [N].
@@ -301,15 +311,25 @@ pub fn solve_rolling_with_slip(
     }
 
     let area = grid.element_area();
+    let s = &w - &m * &q;
     let mut traction_x = vec![0.0; grid.len()];
     let mut traction_y = vec![0.0; grid.len()];
+    let mut slip_x = vec![0.0; grid.len()];
+    let mut slip_y = vec![0.0; grid.len()];
     let mut slip_field = vec![false; grid.len()];
     let (mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0);
+    let (mut t_gamma, mut rigid_work) = (0.0, 0.0);
     for (a, &k) in loaded.iter().enumerate() {
         let (x, y) = (grid.x(k % nx), grid.y(k / nx));
         let (qx, qy) = (q[2 * a], q[2 * a + 1]);
         traction_x[k] = qx;
         traction_y[k] = qy;
+        if slipping[a] {
+            slip_x[k] = s[2 * a];
+            slip_y[k] = s[2 * a + 1];
+            t_gamma -= (qx * s[2 * a] + qy * s[2 * a + 1]) * area;
+        }
+        rigid_work -= (qx * w[2 * a] + qy * w[2 * a + 1]) * area;
         slip_field[k] = slipping[a];
         fx += qx * area;
         fy += qy * area;
@@ -320,6 +340,10 @@ pub fn solve_rolling_with_slip(
         traction_x,
         traction_y,
         slipping: slip_field,
+        slip_x,
+        slip_y,
+        t_gamma,
+        rigid_work,
         fx,
         fy,
         mz,

@@ -29,7 +29,10 @@ use railcontact::geometry::strips::{StripGeometry, MAX_STRIPS};
 use railcontact::normal::hertz::contact_modulus;
 use railcontact::wheelset::SideResult;
 
-use crate::{solve, solve_rolling_with_slip, Grid, Rolling, Solution, SolveError};
+use crate::{
+    solve, solve_rolling, solve_rolling_with_slip, Grid, Rolling, RollingSolution, Solution,
+    SolveError,
+};
 
 /// Lateral sampling of the interpenetration for the plane's weights [m].
 const WEIGHT_STEP: f64 = 1e-5;
@@ -149,6 +152,24 @@ pub fn model_creep_force(side: &SideResult, sigma: f64) -> (f64, f64) {
 fn roll_of(geometry: &WheelOnRail, w: f64) -> f64 {
     let plane = geometry.contact_plane(w, geometry.gap_at(w));
     plane.gamma - plane.gamma_rail
+}
+
+/// Element sizes of [`ExactWheel::planar_t_gamma`]'s solutions [m] (whole multiples of the
+/// 0.2 mm normal solution's).
+pub const T_GAMMA_ELEMENTS: [f64; 3] = [0.4e-3, 0.6e-3, 0.8e-3];
+/// CONTACT's element size, to which [`ExactWheel::planar_t_gamma`] extrapolates [m].
+pub const CONTACT_ELEMENT: f64 = 0.2e-3;
+
+/// Tγ of an exact rolling solution extrapolated in the element size.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DissipationEstimate {
+    /// At [`CONTACT_ELEMENT`] [N].
+    pub t_gamma: f64,
+    /// Per element size of [`T_GAMMA_ELEMENTS`]: (size [m], Tγ [N], work on the rigid slip
+    /// per metre rolled [N]).
+    pub per_element: Vec<(f64, f64, f64)>,
+    /// The solution on the finest elements (the first of [`T_GAMMA_ELEMENTS`]) and its grid.
+    pub finest: (Grid, RollingSolution),
 }
 
 /// The exact planar solution of one wheel.
@@ -316,17 +337,9 @@ impl ExactWheel {
         regions
     }
 
-    /// The exact steady rolling solution on this pressure (the grid coarsened to `element` [m]
-    /// by summing the pressure's force per coarse element) with each element's rigid slip from
-    /// `motion` at its own wheel point, on side `sigma` (+1 right, −1 left), with shear modulus
-    /// `g` [Pa], Poisson's ratio `nu` and friction `mu`: the creep forces in track axes.
-    pub fn rolling(
-        &self,
-        motion: &WheelsetMotion,
-        sigma: f64,
-        element: f64,
-        (g, nu, mu): (f64, f64, f64),
-    ) -> Result<CreepForces, SolveError> {
+    /// The grid coarsened to elements of about `element` [m] (a whole multiple of the fine
+    /// one's) and the pressure on it (each coarse element's force spread over it) [Pa].
+    pub fn coarse(&self, element: f64) -> (Grid, Vec<f64>) {
         let fine = &self.grid;
         let ratio = ((element / fine.dx).round() as usize).max(1);
         let coarse = Grid {
@@ -344,6 +357,77 @@ impl ExactWheel {
                     self.solution.pressure[j * fine.nx + i] / (ratio * ratio) as f64;
             }
         }
+        (coarse, pressure)
+    }
+
+    /// Kalker's planar steady rolling problem on this pressure (coarsened to `element` [m],
+    /// [`ExactWheel::coarse`]): creepages ξ, η and φ [1/m] about the plane's origin (CONTACT's
+    /// reference point) with shear modulus `g` [Pa], Poisson's ratio `nu` and friction `mu`.
+    pub fn planar_rolling(
+        &self,
+        (xi, eta, phi): (f64, f64, f64),
+        element: f64,
+        (g, nu, mu): (f64, f64, f64),
+    ) -> Result<(Grid, RollingSolution), SolveError> {
+        let (grid, pressure) = self.coarse(element);
+        let rolling = Rolling {
+            xi,
+            eta,
+            phi,
+            shear_modulus: g,
+            poisson_ratio: nu,
+            friction: mu,
+        };
+        let solution = solve_rolling(&grid, &pressure, &rolling, 1e-9)?;
+        Ok((grid, solution))
+    }
+
+    /// The dissipation per metre rolled (Tγ) of Kalker's planar problem at creepages
+    /// `(ξ, η, φ)` on CONTACT's 0.2 mm elements, by extrapolation: solved on
+    /// [`T_GAMMA_ELEMENTS`] (the dense Newton systems of 0.2 mm are out of reach) and the
+    /// least-squares line through Tγ against the element size taken at 0.2 mm (the discrete
+    /// dissipation converges at first order, from below).
+    pub fn planar_t_gamma(
+        &self,
+        creepage: (f64, f64, f64),
+        material: (f64, f64, f64),
+    ) -> Result<DissipationEstimate, SolveError> {
+        let mut finest = None;
+        let mut per_element = Vec::with_capacity(T_GAMMA_ELEMENTS.len());
+        for &h in &T_GAMMA_ELEMENTS {
+            let (grid, sol) = self.planar_rolling(creepage, h, material)?;
+            per_element.push((h, sol.t_gamma, sol.rigid_work));
+            finest.get_or_insert((grid, sol));
+        }
+        let finest = finest.expect("T_GAMMA_ELEMENTS is not empty");
+        let n = per_element.len() as f64;
+        let mean_h = per_element.iter().map(|p| p.0).sum::<f64>() / n;
+        let mean_t = per_element.iter().map(|p| p.1).sum::<f64>() / n;
+        let (mut num, mut den) = (0.0, 0.0);
+        for &(h, t, _) in &per_element {
+            num += (h - mean_h) * (t - mean_t);
+            den += (h - mean_h) * (h - mean_h);
+        }
+        Ok(DissipationEstimate {
+            t_gamma: mean_t + num / den * (CONTACT_ELEMENT - mean_h),
+            per_element,
+            finest,
+        })
+    }
+
+    /// The exact steady rolling solution on this pressure (the grid coarsened to `element` [m]
+    /// by summing the pressure's force per coarse element) with each element's rigid slip from
+    /// `motion` at its own wheel point, on side `sigma` (+1 right, −1 left), with shear modulus
+    /// `g` [Pa], Poisson's ratio `nu` and friction `mu`: the creep forces in track axes.
+    pub fn rolling(
+        &self,
+        motion: &WheelsetMotion,
+        sigma: f64,
+        element: f64,
+        (g, nu, mu): (f64, f64, f64),
+    ) -> Result<CreepForces, SolveError> {
+        let fine = &self.grid;
+        let (coarse, pressure) = self.coarse(element);
         // Each coarse row's kinematics from the fine row at its centre.
         let row_of = |y: f64| (((y - fine.y0) / fine.dy) as usize).min(fine.ny - 1);
         let speed = motion.vx.abs().max(0.01);

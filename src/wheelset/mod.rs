@@ -632,6 +632,29 @@ impl Wheelset {
         (!field.is_empty()).then_some(field)
     }
 
+    /// The elements of the patch in output slot `patch` as the damage models see them (area,
+    /// pressure, traction and slip scaled to the patch's frictional power, [`FrictionElement`]),
+    /// each with its lateral rail coordinate `y_rail` [m] as in [`Wheelset::traction_field`];
+    /// `None` for an empty slot. Allocates (on request only); the field of the patch itself (not
+    /// scaled by its weight).
+    pub fn friction_field(&self, right: bool, patch: usize) -> Option<Vec<(f64, FrictionElement)>> {
+        let side = if right { &self.right } else { &self.left };
+        let group = side.slots.get(patch).copied().flatten()?.group;
+        let mut field = Vec::new();
+        if let Some(strips) = side.strips.as_ref() {
+            let p = strips.patches().get(side.strip_of_group[group]?)?;
+            side.strip_fastsim
+                .get(group)?
+                .friction_elements(|j, e| field.push((p.points.y_rail[j], *e)));
+        } else {
+            let y_rail = side.last_y_rail.get(group).copied()?;
+            side.fastsim
+                .get(group)?
+                .friction_elements(|_, e| field.push((y_rail + side.sigma * e.lateral, *e)));
+        }
+        (!field.is_empty()).then_some(field)
+    }
+
     /// The strip patch in output slot `slot` (0-based) of one wheel after the last solve, or
     /// `None` (an empty slot, or a multi-Hertzian patch).
     pub fn strip_patch_of_slot(

@@ -243,3 +243,15 @@ pub fn read_csv(relative: &str) -> Vec<std::collections::HashMap<String, f64>> {
         })
         .collect()
 }
+
+/// Worst and mean |error| of relative errors `errors` and their line in per cent ("  +1.2 …").
+#[allow(dead_code)] // not every crate that includes this module uses it
+pub fn error_summary(errors: &[f64]) -> (f64, f64, String) {
+    let worst = errors.iter().fold(0.0f64, |w, e| w.max(e.abs()));
+    let mean = errors.iter().map(|e| e.abs()).sum::<f64>() / errors.len().max(1) as f64;
+    let line = errors
+        .iter()
+        .map(|e| format!(" {:+5.1}", 100.0 * e))
+        .collect();
+    (worst, mean, line)
+}

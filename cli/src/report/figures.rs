@@ -9,12 +9,15 @@
 //!   or non-planar patches (as Sichani et al. 2014, Fig. 4);
 //! * [`Shifts`] — outline, strip pressure and lateral curvature B of both STRIPES variants at
 //!   several lateral shifts (as Sichani et al. 2014, Fig. 5);
-//! * [`Creep`] — creep-force curves Fx(ξ), Fy(η) over μN per normal model and tangential option.
+//! * [`Creep`] — creep-force curves Fx(ξ), Fy(η) over μN per normal model and tangential option;
+//! * [`Dissipation`] — frictional power density across the patch against the exact rolling
+//!   solution ([`super::dissipation`]).
 //!
 //! Lateral axis: the right rail's `yRail` in mm, positive towards the field side (CONTACT's
 //! right-rail coordinate is the same axis, docs/conventions.md); x along the rolling direction,
 //! leading edge at positive x. Pressures and tractions in MPa.
 
+use super::dissipation::Panel;
 use super::plot::{
     banded_colour, colour_bar, curve, fail, filled, legend, legend_height, model_colour,
     model_label, outline, padded_range, panel, title, with_legend, Axes, Chart, Figure,
@@ -185,6 +188,7 @@ pub enum ReportFigure<'a> {
     Spin(Spin<'a>),
     Shifts(Shifts<'a>),
     Creep(Creep<'a>),
+    Dissipation(Dissipation<'a>),
 }
 
 impl ReportFigure<'_> {
@@ -201,6 +205,10 @@ impl ReportFigure<'_> {
                 "Creep-force curves, planar patches, creepages prescribed, {}",
                 f.setup
             ),
+            Self::Dissipation(f) => format!(
+                "Frictional power density across the patch, creepages prescribed, {}",
+                f.setup
+            ),
         }
     }
 }
@@ -214,6 +222,7 @@ impl Figure for ReportFigure<'_> {
             Self::Spin(_) => "pure_spin_nonplanar",
             Self::Shifts(_) => "lateral_shifts",
             Self::Creep(_) => "creep_curves",
+            Self::Dissipation(_) => "power_density",
         }
     }
 
@@ -224,6 +233,7 @@ impl Figure for ReportFigure<'_> {
             Self::Spin(_) => (1300, 1200),
             Self::Shifts(_) => (1600, 1050),
             Self::Creep(f) => (1300, 560 * f.rows.len().max(1) as u32 + TITLE_H),
+            Self::Dissipation(_) => (1500, 700),
         }
     }
 
@@ -235,6 +245,7 @@ impl Figure for ReportFigure<'_> {
             Self::Spin(f) => f.draw(&area),
             Self::Shifts(f) => f.draw(&area),
             Self::Creep(f) => f.draw(&area),
+            Self::Dissipation(f) => f.draw(&area),
         }
     }
 }
@@ -904,6 +915,58 @@ impl Creep<'_> {
                     let points = if longitudinal { &c.fx } else { &c.fy };
                     curve(&mut chart, points, creep_look(c, by_option))?;
                 }
+            }
+        }
+        Ok(())
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Frictional power density
+
+/// Frictional power density along yRail at each shift of [`super::dissipation::SHIFTS_MM`]
+/// (one panel each): the exact rolling solution and every normal model.
+pub struct Dissipation<'a> {
+    pub panels: &'a [Panel],
+    pub setup: String,
+}
+
+/// The exact rolling solution's label.
+const EXACT_ROLLING: &str = "exact half-space, steady rolling (0.4 mm elements)";
+
+impl Dissipation<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let mut entries = vec![LegendEntry::line(
+            EXACT_ROLLING,
+            Look::solid(REFERENCE_COLOUR, 3),
+        )];
+        if let Some(p) = self.panels.first() {
+            entries.extend(model_entries(p.models.iter().map(|m| m.model)));
+        }
+        let area = with_legend(area, &entries)?;
+        let n = self.panels.len().max(1);
+        for (p, area) in self.panels.iter().zip(area.split_evenly((1, n))) {
+            let profiles = std::iter::once(&p.exact).chain(p.models.iter().map(|m| &m.profile));
+            let points: Vec<(f64, f64)> = profiles.flat_map(|q| q.points.clone()).collect();
+            let top = points.iter().map(|q| q.1).fold(0.0, f64::max);
+            let axes = Axes {
+                x: padded_range(points.iter().map(|q| q.0), 0.04),
+                y: (0.0, 1.08 * top.max(1e-9)),
+                x_label: Y_RAIL_LABEL.to_string(),
+                y_label: "Tγ per unit width [N/mm]".to_string(),
+            };
+            let caption = format!(
+                "y = {} mm: ξ = {}, η = 0, φ = {:.4} 1/m (rolling spin)",
+                p.shift_mm, p.creepage.xi, p.creepage.phi
+            );
+            let mut chart = panel(&area, &caption, &axes)?;
+            curve(
+                &mut chart,
+                &p.exact.points,
+                Look::solid(REFERENCE_COLOUR, 3),
+            )?;
+            for m in &p.models {
+                curve(&mut chart, &m.profile.points, model_look(m.model))?;
             }
         }
         Ok(())
