@@ -19,7 +19,7 @@ pub mod update;
 pub mod wear;
 
 use crate::error::{require_positive, InputError};
-pub use crate::tangential::fastsim::FrictionElement;
+pub use crate::tangential::fastsim::{FrictionElement, FrictionStrip};
 
 /// Wear model (`wearModel`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -140,16 +140,36 @@ impl DamageSum {
     /// the wheel and of the rail [kg/m] (unscaled, as the sums).
     #[inline]
     pub fn add(&mut self, e: &FrictionElement) -> (f64, f64) {
-        let p = &self.params;
-        let k = p.shear_yield_strength;
-        // Only an element whose bound could beat the largest term so far is looked at:
-        // (|q| − k)/p ≤ (bound − k)/p, and (bound − k)/p > local ⇔ bound − k > local p.
-        if e.bound - k > self.local * e.pressure {
+        self.fatigue(e);
+        self.wear(e)
+    }
+
+    /// Adds one element's Tγ and wear but not its fatigue term: a patch whose field slips
+    /// nowhere while it dissipates (the energy released where the material leaves it on a grid
+    /// that adheres throughout, docs/theory.md §4.5) wears as one element of its mean
+    /// pressure and Tγ/A. Returns its wear of the wheel and of the rail [kg/m].
+    pub fn add_release(&mut self, e: &FrictionElement) -> (f64, f64) {
+        self.wear(e)
+    }
+
+    /// The local fatigue index of one element.
+    #[inline]
+    fn fatigue(&mut self, e: &FrictionElement) {
+        let k = self.params.shear_yield_strength;
+        // (|q| − k)/p > local ⇔ |q| > k + local p =: t. Only an element whose bound exceeds t
+        // and whose |q|² exceeds t² (t ≥ 0) is evaluated; p = 0 gives NaN and is skipped.
+        let t = k + self.local * e.pressure;
+        if e.bound > t && (t < 0.0 || e.traction_sq > t * t) {
             let term = fatigue::local_term(e.traction_sq.sqrt(), e.pressure, k);
             if term > self.local {
                 self.local = term;
             }
         }
+    }
+
+    /// The Tγ and wear of one element.
+    #[inline]
+    fn wear(&mut self, e: &FrictionElement) -> (f64, f64) {
         if e.slip == 0.0 {
             return (0.0, 0.0);
         }
@@ -157,7 +177,7 @@ impl DamageSum {
         let density = e.traction_sq.sqrt() * e.slip;
         let dissipated = density * e.area;
         self.t_gamma += dissipated;
-        match p.wear_model {
+        match self.params.wear_model {
             WearModel::Off => (0.0, 0.0),
             WearModel::Usfd => {
                 if density >= wear::USFD_MILD_LIMIT {
@@ -187,6 +207,81 @@ impl DamageSum {
                 let (wheel, rail) = (k(0) * mass, k(1) * mass);
                 self.wheel += wheel;
                 self.rail += rail;
+                (wheel, rail)
+            }
+        }
+    }
+
+    /// Adds one strip of a FASTSIM field ([`FrictionStrip`]); returns its wear of the wheel and
+    /// of the rail [kg/m] (unscaled). The same sums as [`DamageSum::add`] over its elements (to
+    /// rounding: a slipping element's |q| is taken as its bound, where the march put it), from
+    /// the march's own sums of the strip where they suffice: its elements' fatigue terms only
+    /// where the strip's peak pressure could beat the largest term so far ((μp − k)/p grows
+    /// with p); its wear at once where every element lies in USFD's mild regime (linear in
+    /// Tγ/A), or for Archard below both seizure pressures by velocity class (at once where
+    /// every element slides below 0.2 m/s).
+    pub fn add_strip(&mut self, s: &FrictionStrip) -> (f64, f64) {
+        let n = s.shape.len().min(s.slip.len());
+        let k = self.params.shear_yield_strength;
+        let peak = s.pressure_scale * s.top_shape;
+        if s.bound_scale * s.top_shape > k + self.local * peak {
+            for i in 0..n {
+                self.fatigue(&s.element(i));
+            }
+        }
+        if s.power.sum <= 0.0 {
+            return (0.0, 0.0);
+        }
+        // Σ |q| |s| ΔA with |q| on the bound where an element slips.
+        let dissipated = s.slip_scale * s.power.sum * s.area;
+        match self.params.wear_model {
+            WearModel::Off => {
+                self.t_gamma += dissipated;
+                (0.0, 0.0)
+            }
+            WearModel::Usfd if s.slip_scale * s.power.max < wear::USFD_MILD_LIMIT => {
+                self.t_gamma += dissipated;
+                let m = wear::USFD_MILD_RATE * dissipated;
+                (m, m)
+            }
+            WearModel::ArchardKth if peak <= self.seizure[0].min(self.seizure[1]) => {
+                // Below both seizure pressures the map's k depends on the sliding velocity
+                // alone: ρ p |s| ΔA with p = |q| pressure_scale / bound_scale, k2 throughout
+                // where every element slides below 0.2 m/s, else per velocity class.
+                let per_slip = s.slip_scale * self.speed;
+                let weighted = if s.power.max_slip * per_slip < 0.2 {
+                    wear::KTH_K2 * s.power.sum
+                } else {
+                    // Σ shape slip over the middle and the fast class, without branches (the
+                    // classes of neighbouring elements alternate unpredictably).
+                    let [all, middle, above] = velocity_classes(
+                        &s.shape[..n],
+                        &s.slip[..n],
+                        (0.2 / per_slip, 0.7 / per_slip),
+                    );
+                    let sum = wear::KTH_K2 * (all - middle - above)
+                        + wear::KTH_K3 * middle
+                        + wear::KTH_K4 * above;
+                    sum * s.bound_scale
+                };
+                self.t_gamma += dissipated;
+                let mass = s.slip_scale * weighted * s.area * s.pressure_scale / s.bound_scale
+                    * wear::STEEL_DENSITY;
+                let (wheel, rail) = (
+                    self.inverse_hardness[0] * mass,
+                    self.inverse_hardness[1] * mass,
+                );
+                self.wheel += wheel;
+                self.rail += rail;
+                (wheel, rail)
+            }
+            _ => {
+                let (mut wheel, mut rail) = (0.0, 0.0);
+                for i in 0..n {
+                    let (w, r) = self.wear(&s.element(i));
+                    wheel += w;
+                    rail += r;
+                }
                 (wheel, rail)
             }
         }
@@ -232,6 +327,38 @@ impl DamageSum {
     }
 }
 
+/// Σ shape_i slip_i over a strip, and over its elements whose slip lies in [slow, fast] and
+/// above fast (Archard's velocity classes in the strip's raw slip): without branches (the
+/// classes of neighbouring elements alternate unpredictably) and in four lanes (no chain of
+/// dependent additions).
+fn velocity_classes(shape: &[f64], slip: &[f64], (slow, fast): (f64, f64)) -> [f64; 3] {
+    const LANES: usize = 4;
+    let mut sums = [[0.0; LANES]; 3];
+    let mut add = |lane: usize, shape: f64, slip: f64| {
+        let product = shape * slip;
+        sums[0][lane] += product;
+        sums[1][lane] += if slip >= slow && slip <= fast {
+            product
+        } else {
+            0.0
+        };
+        sums[2][lane] += if slip > fast { product } else { 0.0 };
+    };
+    let whole = shape.len().min(slip.len()) / LANES * LANES;
+    for (a, b) in shape[..whole]
+        .chunks_exact(LANES)
+        .zip(slip[..whole].chunks_exact(LANES))
+    {
+        for lane in 0..LANES {
+            add(lane, a[lane], b[lane]);
+        }
+    }
+    for (&a, &b) in shape[whole..].iter().zip(&slip[whole..]) {
+        add(0, a, b);
+    }
+    sums.map(|s| s.iter().sum())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -244,6 +371,68 @@ mod tests {
             traction_sq: traction * traction,
             bound: f64::INFINITY,
             slip,
+        }
+    }
+
+    #[test]
+    fn strips_sum_as_their_elements() {
+        // A FASTSIM field's strips (`add_strip`, from the march's own sums where they suffice)
+        // against its elements one by one (`add`): Tγ, both wear rates and the local fatigue
+        // index to 1e−9 relative (a slipping element's |q| is its bound to rounding), for every
+        // wear model, partial and full slip with spin, sliding velocities in each of Archard's
+        // classes, and hardnesses with and without the seizure pressure reached.
+        use crate::tangential::fastsim::{Creepage, Fastsim, FastsimSettings, CONTACT_EXAMPLE};
+        let rel = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs()) + 1e-300;
+        let mut f = Fastsim::new(FastsimSettings::online()).unwrap();
+        f.record_slips();
+        let creepages = [
+            (2e-4, 1e-4, 0.0),
+            (1e-3, -5e-4, 0.3),
+            (4e-3, 0.0, 1.0),
+            (0.05, 0.02, 0.0),
+        ];
+        for (xi, eta, phi) in creepages {
+            for speed in [1.0, 30.0, 200.0] {
+                f.solve(&CONTACT_EXAMPLE, &Creepage { xi, eta, phi }, speed)
+                    .unwrap();
+                for wear_model in [WearModel::Off, WearModel::Usfd, WearModel::ArchardKth] {
+                    for hardness in [2.6e9, 0.9e9] {
+                        let params = DamageParams {
+                            wear_model,
+                            wheel_hardness: hardness,
+                            rail_hardness: 1.3 * hardness,
+                            ..DamageParams::default()
+                        };
+                        let mut by_element = DamageSum::new(params, speed);
+                        f.friction_elements(|_, e| {
+                            by_element.add(e);
+                        });
+                        let mut by_strip = DamageSum::new(params, speed);
+                        assert!(f.friction_strips(|_, s| {
+                            by_strip.add_strip(s);
+                        }));
+                        let case =
+                            format!("{xi} {eta} {phi} V {speed} {wear_model:?} H {hardness}");
+                        assert!(rel(by_strip.t_gamma(), by_element.t_gamma()), "{case}");
+                        let t = by_element.t_gamma();
+                        let (a, b) = (by_strip.finish(t), by_element.finish(t));
+                        assert!(
+                            rel(a.wheel_wear_rate, b.wheel_wear_rate),
+                            "{case}: {a:?} {b:?}"
+                        );
+                        assert!(
+                            rel(a.rail_wear_rate, b.rail_wear_rate),
+                            "{case}: {a:?} {b:?}"
+                        );
+                        // The largest term to rounding: the skip test k + local p against
+                        // |q| may decide a near tie either way, by visiting order.
+                        assert!(
+                            rel(a.fatigue_index_local, b.fatigue_index_local),
+                            "{case}: {a:?} {b:?}"
+                        );
+                    }
+                }
+            }
         }
     }
 

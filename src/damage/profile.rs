@@ -12,11 +12,21 @@
 pub const WEAR_BIN: f64 = 0.5e-3;
 
 /// Mass per bin over a lateral range [kg] (or a rate, kg/m, per step).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct WearBins {
     /// Centre of bin 0 [m].
     origin: f64,
     mass: Vec<f64>,
+    /// The bins that may be non-zero, `touched.0..touched.1` (empty when `.0 ≥ .1`): a step
+    /// touches a few of a profile's hundreds of bins, and clearing and adding visit only those.
+    touched: (usize, usize),
+}
+
+impl PartialEq for WearBins {
+    /// The same layout and masses (whatever range is marked as touched).
+    fn eq(&self, other: &Self) -> bool {
+        self.origin == other.origin && self.mass == other.mass
+    }
 }
 
 impl WearBins {
@@ -31,6 +41,7 @@ impl WearBins {
         Self {
             origin: if lo.is_finite() { lo } else { 0.0 },
             mass: vec![0.0; n],
+            touched: (0, 0),
         }
     }
 
@@ -53,6 +64,7 @@ impl WearBins {
     }
 
     pub fn mass_mut(&mut self) -> &mut [f64] {
+        self.touched = (0, self.mass.len());
         &mut self.mass
     }
 
@@ -62,11 +74,16 @@ impl WearBins {
     }
 
     pub fn clear(&mut self) {
-        self.mass.fill(0.0);
+        let (lo, hi) = self.touched;
+        if lo < hi {
+            self.mass[lo..hi].fill(0.0);
+        }
+        self.touched = (0, 0);
     }
 
     /// Adds `mass` at lateral `y` [m], split linearly between the two bins around it (beyond
     /// the ends: into the end bin). Non-finite or non-positive values add nothing.
+    #[inline]
     pub fn add(&mut self, y: f64, mass: f64) {
         if !(mass > 0.0 && mass.is_finite() && y.is_finite()) {
             return;
@@ -78,18 +95,35 @@ impl WearBins {
         let f = u - i as f64;
         self.mass[i] += mass * (1.0 - f);
         self.mass[i + 1] += mass * f;
+        self.touch(i, i + 2);
     }
 
-    /// Adds `factor` × `other` bin by bin (the same layout); returns the sum added and the
-    /// largest bin afterwards.
+    /// Marks bins `lo..hi` as possibly non-zero.
+    fn touch(&mut self, lo: usize, hi: usize) {
+        self.touched = if self.touched.0 < self.touched.1 {
+            (self.touched.0.min(lo), self.touched.1.max(hi))
+        } else {
+            (lo, hi)
+        };
+    }
+
+    /// Adds `factor` × `other` bin by bin (the same layout) over the bins `other` touched;
+    /// returns the sum added and the largest of the bins added to afterwards (with factor ≥ 0
+    /// and masses ≥ 0, the other bins' largest is unchanged).
     pub fn add_scaled(&mut self, other: &WearBins, factor: f64) -> (f64, f64) {
+        let (lo, hi) = other.touched;
+        let hi = hi.min(self.mass.len()).min(other.mass.len());
+        if lo >= hi {
+            return (0.0, 0.0);
+        }
         let (mut added, mut largest) = (0.0, 0.0_f64);
-        for (m, o) in self.mass.iter_mut().zip(&other.mass) {
+        for (m, o) in self.mass[lo..hi].iter_mut().zip(&other.mass[lo..hi]) {
             let a = o * factor;
             added += a;
             *m += a;
             largest = largest.max(*m);
         }
+        self.touch(lo, hi);
         (added, largest)
     }
 }

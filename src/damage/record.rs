@@ -67,7 +67,7 @@ impl WearRecord {
             for ((m, s), (total, largest)) in mine.iter_mut().zip(step).zip(totals) {
                 let (added, top) = m.add_scaled(s, distance);
                 *total += added;
-                *largest = top;
+                *largest = largest.max(top);
             }
         }
         self.distance += distance;

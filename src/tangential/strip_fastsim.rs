@@ -64,8 +64,8 @@ use crate::error::InputError;
 use crate::geometry::strips::MAX_STRIPS;
 use crate::tangential::fastrip::{semi_ellipse_midpoint_ratio, StripGrid};
 use crate::tangential::fastsim::{
-    slip_scale, strip_outs, Creepage, FastsimResult, FrictionElement, MarchScheme, StripMarch,
-    StripOut, StripSums, MAX_GROUP,
+    centre_out, slip_scale, strip_outs, Creepage, FastsimResult, FrictionElement, FrictionStrip,
+    MarchScheme, StripMarch, StripOut, StripPower, StripSums, MAX_GROUP,
 };
 use crate::tangential::kalker::CreepCoefficients;
 use crate::tangential::strip_coefficients::{CouplingStrip, StripCoefficients};
@@ -130,6 +130,8 @@ impl From<&FastsimResult> for StripFastsimResult {
 /// One strip's sums (forces in N in the strip's own axes).
 #[derive(Debug, Clone, Copy, Default)]
 struct StripTotals {
+    /// FASTSIM's march sums of the strip (zero after FaStrip).
+    march_power: StripPower,
     fx: f64,
     fy: f64,
     /// Σ x p_y ΔA [N m].
@@ -207,6 +209,8 @@ pub struct StripFastsim {
     shape: Vec<f64>,
     /// [`semi_ellipse_midpoint_ratio`] of `nx` (FaStrip's bound is divided by it).
     midpoint_ratio: f64,
+    /// The largest of `shape`.
+    top_shape: f64,
     /// FaStrip's element centres and semi-ellipse on a strip of `nx` elements.
     fastrip_grid: Arc<StripGrid>,
     /// The strip-wise creep coefficients' solver and its strips (sized by
@@ -257,6 +261,9 @@ impl StripFastsim {
             totals: vec![StripTotals::default(); MAX_STRIPS],
             n_strips: 0,
             shape: bound_shape(nx, midpoint_ratio),
+            top_shape: bound_shape(nx, midpoint_ratio)
+                .into_iter()
+                .fold(0.0, f64::max),
             midpoint_ratio,
             fastrip_grid: Arc::new(StripGrid::new(nx)),
             coupling: StripCoefficients::default(),
@@ -299,6 +306,7 @@ impl StripFastsim {
                 fy: sums.sum_py * area,
                 x_fy: sums.sum_x_py * area,
                 power_per_speed: sums.sum_power * strip.width,
+                march_power: StripPower::of(sums),
                 max_traction: sums.max_traction_sq.sqrt(),
                 n_elements: nx,
                 n_adhesion: sums.n_adhesion,
@@ -441,6 +449,7 @@ impl StripFastsim {
                     fy: sums.fy * w,
                     x_fy: sums.x_fy * w,
                     power_per_speed: sums.power_density * w,
+                    march_power: StripPower::default(),
                     max_traction: sums.max_traction,
                     n_elements: sums.n_elements,
                     n_adhesion: sums.n_adhesion,
@@ -656,6 +665,40 @@ impl StripFastsim {
 }
 
 impl StripFastsim {
+    /// The strips of the last solve as the damage models see them (`visit(strip, field)`,
+    /// [`FrictionStrip`]; the lateral is the strip's lever); `false` (nothing visited) after a
+    /// FaStrip solve or where FASTSIM's slips are not recorded (use
+    /// [`StripFastsim::friction_elements`]).
+    pub fn friction_strips(&self, mut visit: impl FnMut(usize, &FrictionStrip)) -> bool {
+        if self.last_fastrip || self.slip.is_empty() {
+            return false;
+        }
+        let nx = self.nx;
+        for j in centre_out(self.n_strips) {
+            let Some((march, _)) = self.marches[j] else {
+                continue;
+            };
+            let row = j * nx..(j + 1) * nx;
+            visit(
+                j,
+                &FrictionStrip {
+                    lateral: self.levers[j],
+                    area: march.dx * self.widths[j],
+                    pressure_scale: self.geometry[j].2,
+                    bound_scale: march.bound_scale,
+                    slip_scale: self.slip_scale / march.dx,
+                    shape: &self.shape,
+                    slip: &self.slip[row.clone()],
+                    px: &self.px[row.clone()],
+                    py: &self.py[row],
+                    top_shape: self.top_shape,
+                    power: self.totals[j].march_power,
+                },
+            );
+        }
+        true
+    }
+
     /// The elements in contact of the last solve as the damage models see them
     /// (`visit(strip, element)`, [`FrictionElement`]; the lateral is the strip's lever):
     /// FASTSIM's slip replayed from its field ([`StripMarch::slips`]), FaStrip's from its power

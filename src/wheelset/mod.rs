@@ -49,7 +49,9 @@ pub use regions::Slot;
 use nalgebra::Vector3;
 
 use crate::damage::profile::WearBins;
-use crate::damage::{fatigue, DamageParams, DamageSum, FrictionElement, PatchDamage};
+use crate::damage::{
+    fatigue, DamageParams, DamageSum, FrictionElement, FrictionStrip, PatchDamage,
+};
 use crate::error::InputError;
 use crate::geometry::groups::MAX_GROUPS;
 use crate::geometry::profile::Profile;
@@ -824,8 +826,15 @@ pub fn derailment_quotient(sigma: f64, force: [f64; 3]) -> f64 {
 /// after the creep passes: its wear rates (scaled to the patch's own Tγ: a pass that reused a
 /// recorded solution scaled it, and a patch's group weight shares it), its largest local
 /// fatigue index, and its wear spread strip by strip over the side's distributions across the
-/// wheel's and the rail's profile ([`WearRates`]). Nothing with `wearModel` 0.
-fn patch_damage(side: &mut Side, params: &DamageParams, strip_model: bool, out: &mut SideResult) {
+/// wheel's and the rail's profile ([`WearRates`]); `mu` the friction coefficient (a patch that
+/// dissipates with no slipping element, [`DamageSum::add_release`]). Nothing with `wearModel` 0.
+fn patch_damage(
+    side: &mut Side,
+    params: &DamageParams,
+    mu: f64,
+    strip_model: bool,
+    out: &mut SideResult,
+) {
     if !params.element_wise() {
         return;
     }
@@ -858,21 +867,54 @@ fn patch_damage(side: &mut Side, params: &DamageParams, strip_model: bool, out: 
                 used = used.max(j + 1);
             }
         };
-        let add = |j: usize, e: &FrictionElement| {
-            let (wheel, rail) = sum.add(e);
-            if j != current.0 {
-                store(std::mem::replace(&mut current, (j, (0.0, 0.0, e.lateral))));
-            }
-            let s = &mut current.1;
-            s.0 += wheel;
-            s.1 += rail;
+        // FASTSIM's recorded fields strip by strip; otherwise (FaStrip, or slips replayed)
+        // element by element.
+        let by_strip = |j: usize, s: &FrictionStrip| {
+            let (wheel, rail) = sum.add_strip(s);
+            store((j, (wheel, rail, s.lateral)));
         };
-        if strip_model {
-            side.strip_fastsim[h].friction_elements(add);
+        let by_strips = if strip_model {
+            side.strip_fastsim[h].friction_strips(by_strip)
         } else {
-            side.fastsim[h].friction_elements(add);
+            side.fastsim[h].friction_strips(by_strip)
+        };
+        if !by_strips {
+            let add = |j: usize, e: &FrictionElement| {
+                let (wheel, rail) = sum.add(e);
+                if j != current.0 {
+                    store(std::mem::replace(&mut current, (j, (0.0, 0.0, e.lateral))));
+                }
+                let s = &mut current.1;
+                s.0 += wheel;
+                s.1 += rail;
+            };
+            if strip_model {
+                side.strip_fastsim[h].friction_elements(add);
+            } else {
+                side.fastsim[h].friction_elements(add);
+            }
         }
         store(current);
+        if sum.t_gamma() == 0.0 && patch.t_gamma > 0.0 && patch.area > 0.0 && patch.fn_ > 0.0 {
+            // Nothing slips on the grid, yet the patch dissipates: one element of the patch's
+            // mean pressure and Tγ/A at its reference point (traction μp̄, slip Tγ/(μ Fn)).
+            let pressure = patch.fn_ / patch.area;
+            let release = FrictionElement {
+                lateral: 0.0,
+                area: patch.area,
+                pressure,
+                traction_sq: (mu * pressure).powi(2),
+                bound: f64::NEG_INFINITY,
+                slip: patch.t_gamma / (mu * patch.fn_),
+            };
+            let (wheel, rail) = sum.add_release(&release);
+            // On the profiles at the middle strip (an ellipse's: its reference point).
+            let middle = used / 2;
+            if let Some(s) = side.strip_wear.get_mut(middle) {
+                *s = (wheel, rail, 0.0);
+                used = used.max(middle + 1);
+            }
+        }
         let damage = sum.finish(patch.t_gamma);
         patch.set_damage(&damage);
         // The strips' wear, scaled as the patch's, at their points on the two profiles.
@@ -884,6 +926,7 @@ fn patch_damage(side: &mut Side, params: &DamageParams, strip_model: bool, out: 
         let wear = &mut side.wear;
         let strip_patch = side.strips.as_ref().and_then(|s| s.patches().get(key));
         let ellipse = side.ellipses[..side.n_ellipses].iter().find(|e| e.3 == key);
+        let cos_angle = ellipse.map_or(1.0, |e| e.0.contact_angle.cos());
         for (j, strip) in side.strip_wear[..used].iter_mut().enumerate() {
             let (wheel, rail, lateral) = std::mem::take(strip);
             if wheel == 0.0 && rail == 0.0 {
@@ -894,7 +937,7 @@ fn patch_damage(side: &mut Side, params: &DamageParams, strip_model: bool, out: 
                 (false, _, Some((reference, ..))) => {
                     // Along the profiles: the contact plane's lateral towards the field side
                     // (σ e_y), projected by the contact angle.
-                    let d = side.sigma * lateral * reference.contact_angle.cos();
+                    let d = side.sigma * lateral * cos_angle;
                     (reference.y_wheel + d, reference.y_rail + d)
                 }
                 _ => continue,
@@ -961,7 +1004,8 @@ fn solve_side(
         }
     }
     check_balance(side.name, load, out)?;
-    patch_damage(side, &ctx.settings.damage, strip_model, out);
+    let mu = ctx.settings.material.friction;
+    patch_damage(side, &ctx.settings.damage, mu, strip_model, out);
     out.derailment_quotient = derailment_quotient(s, out.force);
     regions::report(side, input, ctx.settings.planar_patch, out);
     out.finish_damage(ctx.settings.damage.shear_yield_strength);

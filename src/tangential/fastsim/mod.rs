@@ -302,6 +302,63 @@ pub struct FrictionElement {
     pub slip: f64,
 }
 
+/// A strip's dissipation from its march, in the march's units: Σ |p| |S| and the largest
+/// |p| |S| [Pa m] and |S| [m] of its elements (0 in full adhesion).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StripPower {
+    pub sum: f64,
+    pub max: f64,
+    pub max_slip: f64,
+}
+
+impl StripPower {
+    pub(crate) fn of(s: &StripSums) -> Self {
+        Self {
+            sum: s.sum_power,
+            max: s.max_power,
+            max_slip: s.max_slip,
+        }
+    }
+}
+
+/// One strip of a FASTSIM field whose slips were recorded, as the damage models see it
+/// (`crate::damage`): element i has the pressure `pressure_scale` × `shape[i]`, the traction
+/// bound `bound_scale` × `shape[i]`, the traction (`px[i]`, `py[i]`) and the slip
+/// `slip_scale` × `slip[i]` — 0 in adhesion; where it slips, its traction is on the bound.
+#[derive(Debug, Clone, Copy)]
+pub struct FrictionStrip<'a> {
+    /// Lateral position of the strip in the contact plane, from the patch's reference point [m].
+    pub lateral: f64,
+    /// Element area ΔA [m²].
+    pub area: f64,
+    pub pressure_scale: f64,
+    pub bound_scale: f64,
+    pub slip_scale: f64,
+    pub shape: &'a [f64],
+    pub slip: &'a [f64],
+    pub px: &'a [f64],
+    pub py: &'a [f64],
+    /// The largest of `shape` (the strip's peak pressure over `pressure_scale`).
+    pub top_shape: f64,
+    /// The march's sums of the strip, before `slip_scale`.
+    pub power: StripPower,
+}
+
+impl FrictionStrip<'_> {
+    /// Element `i` (< `shape.len()`).
+    #[inline]
+    pub fn element(&self, i: usize) -> FrictionElement {
+        FrictionElement {
+            lateral: self.lateral,
+            area: self.area,
+            pressure: self.pressure_scale * self.shape[i],
+            traction_sq: self.px[i] * self.px[i] + self.py[i] * self.py[i],
+            bound: self.bound_scale * self.shape[i],
+            slip: self.slip_scale * self.slip[i],
+        }
+    }
+}
+
 /// F1: flexibilities [L1, L2, L3] [m/Pa] for semi-axes `a` (rolling), `b` [m], shear modulus
 /// `shear_modulus` [Pa] and Kalker coefficients `c`.
 pub fn three_flexibilities(a: f64, b: f64, shear_modulus: f64, c: &CreepCoefficients) -> [f64; 3] {
@@ -437,6 +494,9 @@ pub(crate) struct StripSums {
     pub sum_x_py: f64,
     /// Σ |p| |S| [Pa m].
     pub sum_power: f64,
+    /// The largest |p| |S| [Pa m] and |S| [m] of a slipping element (0 in full adhesion).
+    pub max_power: f64,
+    pub max_slip: f64,
     pub max_traction_sq: f64,
     pub n_contact: usize,
     pub n_adhesion: usize,
@@ -580,6 +640,8 @@ impl StripMarch {
             let sy = ly * (*py - trial_y);
             let slip = (sx * sx + sy * sy).sqrt();
             s.sum_power += bound * slip;
+            s.max_power = s.max_power.max(bound * slip);
+            s.max_slip = s.max_slip.max(slip);
             if let Some(r) = o.slip.get_mut(i) {
                 *r = slip;
             }
@@ -726,6 +788,10 @@ pub struct Fastsim {
     has_field: bool,
     /// [`centre_pressure_resultant`] of this grid.
     centre_pressure_ratio: f64,
+    /// Per strip: the largest of its shape, and its march's dissipation in the last solve (for
+    /// [`Fastsim::friction_strips`]).
+    top_shape: Vec<f64>,
+    strip_power: Vec<StripPower>,
 }
 
 /// Largest accepted `nx`, `ny` (memory guard: 1e4 × 1e4 elements would need ~2 GB).
@@ -774,6 +840,10 @@ impl Fastsim {
         if ratio > 0.0 {
             shape.iter_mut().for_each(|v| *v /= ratio);
         }
+        let top_shape = shape
+            .chunks(nx)
+            .map(|row| row.iter().copied().fold(0.0, f64::max))
+            .collect();
         Ok(Self {
             settings,
             shape,
@@ -791,6 +861,8 @@ impl Fastsim {
             slip: Vec::new(),
             has_field: false,
             centre_pressure_ratio: ratio,
+            top_shape,
+            strip_power: vec![StripPower::default(); ny],
         })
     }
 
@@ -905,6 +977,7 @@ impl Fastsim {
                 let [mut out] = strip_outs(field, slip, &rows[..1]);
                 let s0 = m.run(step_x_at(y), shape, &mut out);
                 add(s0, y);
+                self.strip_power[j] = StripPower::of(&s0);
             } else {
                 let mut out: [StripOut<'_>; 2] = strip_outs(field, slip, &rows);
                 let sums = StripMarch::run_group(
@@ -916,6 +989,8 @@ impl Fastsim {
                 let [s0, s1, ..] = sums;
                 add(s0, y);
                 add(s1, -y);
+                self.strip_power[j] = StripPower::of(&s0);
+                self.strip_power[mirror] = StripPower::of(&s1);
             }
         }
         let StripSums {
@@ -1007,6 +1082,45 @@ impl Fastsim {
         Some((b * normalised_centre(j, self.settings.ny), m, (first, end)))
     }
 
+    /// The last successful solve's strips as the damage models see them
+    /// (`visit(strip, strip's field)`, [`FrictionStrip`]); `false` (nothing visited) where the
+    /// slips are not recorded ([`Fastsim::record_slips`]: use [`Fastsim::friction_elements`]).
+    pub fn friction_strips(&self, mut visit: impl FnMut(usize, &FrictionStrip)) -> bool {
+        if self.slip.is_empty() {
+            return false;
+        }
+        if !self.has_field {
+            return true;
+        }
+        let (nx, ny) = (self.settings.nx, self.settings.ny);
+        let (a, b) = (self.last_a, self.last_b);
+        let dx = 2.0 * a / nx as f64;
+        let area = dx * 2.0 * b / ny as f64;
+        for j in centre_out(ny) {
+            let Some((y, m, (first, end))) = self.strip(j, (a, b), &self.last_march) else {
+                continue;
+            };
+            let row = j * nx + first..j * nx + end;
+            visit(
+                j,
+                &FrictionStrip {
+                    lateral: y,
+                    area,
+                    pressure_scale: self.last_peak_pressure,
+                    bound_scale: m.bound_scale,
+                    slip_scale: self.last_power_factor / dx,
+                    shape: &self.shape[row.clone()],
+                    slip: &self.slip[row.clone()],
+                    px: &self.px[row.clone()],
+                    py: &self.py[row],
+                    top_shape: self.top_shape[j],
+                    power: self.strip_power[j],
+                },
+            );
+        }
+        true
+    }
+
     /// The last successful solve's elements in contact as the damage models see them
     /// (`visit(strip, element)`, [`FrictionElement`]; nothing after N = 0, an error, or before
     /// the first solve). The slip is the march's own, scaled so that V Σ |q| |s| ΔA is the
@@ -1071,6 +1185,20 @@ impl Fastsim {
             );
         }
     }
+}
+
+/// The indices 0..n from the middle outwards (n/2, n/2 − 1, n/2 + 1, …): strips in the order
+/// of falling peak pressure on an ellipse, so that a running maximum over them settles early.
+pub fn centre_out(n: usize) -> impl Iterator<Item = usize> {
+    let mid = n / 2;
+    (0..n).map(move |k| {
+        let step = k.div_ceil(2);
+        if k % 2 == 1 {
+            mid - step
+        } else {
+            mid + step
+        }
+    })
 }
 
 /// Frictional power of steady rolling [W]: the work of the tractions on the rigid slip,
@@ -1882,6 +2010,18 @@ mod tests {
                     assert_eq!(n, replayed.len());
                 }
             }
+        }
+    }
+
+    #[test]
+    fn centre_out_visits_every_index_once() {
+        for n in 0..9 {
+            let mut v: Vec<usize> = centre_out(n).collect();
+            if n > 0 {
+                assert_eq!(v[0], n / 2);
+            }
+            v.sort_unstable();
+            assert_eq!(v, (0..n).collect::<Vec<_>>());
         }
     }
 

@@ -164,6 +164,8 @@ struct Lanes<V> {
     sum_py: V,
     sum_x_py: V,
     sum_power: V,
+    max_power: V,
+    max_slip: V,
     max_sq: V,
     /// Adhering elements per lane, counted in f64 (exact below 2⁵³).
     n_adhesion: V,
@@ -198,6 +200,8 @@ impl<V: Packed> Lanes<V> {
             sum_py: zero,
             sum_x_py: zero,
             sum_power: zero,
+            max_power: zero,
+            max_slip: zero,
             max_sq: zero,
             n_adhesion: zero,
         }
@@ -234,7 +238,10 @@ impl<V: Packed> Lanes<V> {
             let sy = self.ly.mul(self.py.sub(trial_y));
             let slip_sq = sx.mul(sx).add(sy.mul(sy));
             slip_len = slip_sq.sqrt();
-            self.sum_power = self.sum_power.add(bound.mul(slip_len));
+            let power = bound.mul(slip_len);
+            self.sum_power = self.sum_power.add(power);
+            self.max_power = power.max(self.max_power);
+            self.max_slip = slip_len.max(self.max_slip);
         }
         let (mut px, mut py) = ([0.0; 4], [0.0; 4]);
         self.px.store(&mut px);
@@ -265,7 +272,7 @@ impl<V: Packed> Lanes<V> {
     /// The lanes' sums into `sums` (one per lane).
     #[inline(always)]
     unsafe fn finish(&self, sums: &mut [StripSums]) {
-        let mut columns = [[0.0; 4]; 6];
+        let mut columns = [[0.0; 4]; 8];
         for (v, c) in [
             self.sum_px,
             self.sum_py,
@@ -273,6 +280,8 @@ impl<V: Packed> Lanes<V> {
             self.sum_power,
             self.max_sq,
             self.n_adhesion,
+            self.max_power,
+            self.max_slip,
         ]
         .iter()
         .zip(columns.iter_mut())
@@ -286,6 +295,8 @@ impl<V: Packed> Lanes<V> {
             s.sum_power = columns[3][lane];
             s.max_traction_sq = columns[4][lane];
             s.n_adhesion = columns[5][lane] as usize;
+            s.max_power = columns[6][lane];
+            s.max_slip = columns[7][lane];
         }
     }
 }
