@@ -94,6 +94,27 @@ fn outputs() -> impl Iterator<Item = &'static VarInfo> {
         .filter(|v| v.causality == Causality::Output && v.ty == VarType::Real)
 }
 
+/// The Real input `name` of `WheelRailContact` (what a batch or a [`Wheelset`] may set; the
+/// parameters go in the case).
+fn real_input(name: &str) -> Result<&'static VarInfo, Failure> {
+    INFO.variable(name)
+        .filter(|v| v.ty == VarType::Real && v.causality == Causality::Input)
+        .ok_or_else(|| {
+            Failure::Error(format!(
+                "'{name}': not a Real input of WheelRailContact (parameters go in the case)"
+            ))
+        })
+}
+
+/// The error of a value outside `info`'s range, `what` naming it ("'y' = 0.2").
+fn out_of_range(info: &VarInfo, what: &str) -> Failure {
+    Failure::Error(format!(
+        "{what} is outside the allowed range {}{}",
+        info.allowed,
+        railcontact_cli::unit_suffix(info)
+    ))
+}
+
 /// A batch's output columns (name, float64 bytes) and its rows' status (int32 bytes).
 type BatchOut<'py> = (Vec<(String, Bound<'py, PyBytes>)>, Bound<'py, PyBytes>);
 
@@ -131,14 +152,7 @@ fn solve_batch<'py>(
     let mut rows = None;
     for (name, column) in names.iter().zip(&columns) {
         let bytes = column.as_bytes();
-        let info = INFO
-            .variable(name)
-            .filter(|v| v.ty == VarType::Real && v.causality == Causality::Input)
-            .ok_or_else(|| {
-                RailcontactError::new_err(format!(
-                    "'{name}': not a Real input of WheelRailContact (parameters go in the case)"
-                ))
-            })?;
+        let info = real_input(name).map_err(to_py)?;
         if bytes.len() % 8 != 0 {
             return Err(RailcontactError::new_err(format!(
                 "'{name}': {} bytes are not whole float64 values",
@@ -193,12 +207,10 @@ fn batch(
             .enumerate()
             .find(|(_, v)| !c.info.accepts_real(**v))
         {
-            return Err(Failure::Error(format!(
-                "'{}' = {v} (row {k}) is outside the allowed range {}{}",
-                c.name,
-                c.info.allowed,
-                railcontact_cli::unit_suffix(c.info)
-            )));
+            return Err(out_of_range(
+                c.info,
+                &format!("'{}' = {v} (row {k})", c.name),
+            ));
         }
     }
     let mut model = railcontact_cli::model(&values)?;
@@ -265,21 +277,9 @@ impl Wheelset {
             )));
         }
         for (name, &v) in names.iter().zip(&values) {
-            let info = INFO
-                .variable(name)
-                .filter(|v| v.ty == VarType::Real && v.causality == Causality::Input)
-                .ok_or_else(|| {
-                    RailcontactError::new_err(format!(
-                        "'{name}': not a Real input of WheelRailContact (parameters go in the \
-                         case)"
-                    ))
-                })?;
+            let info = real_input(name).map_err(to_py)?;
             if !info.accepts_real(v) {
-                return Err(RailcontactError::new_err(format!(
-                    "'{name}' = {v} is outside the allowed range {}{}",
-                    info.allowed,
-                    railcontact_cli::unit_suffix(info)
-                )));
+                return Err(to_py(out_of_range(info, &format!("'{name}' = {v}"))));
             }
             self.values.reals[info.slot] = v;
         }

@@ -249,7 +249,7 @@ impl DamageSum {
                 // alone: ρ p |s| ΔA with p = |q| pressure_scale / bound_scale, k2 throughout
                 // where every element slides below 0.2 m/s, else per velocity class.
                 let per_slip = s.slip_scale * self.speed;
-                let weighted = if s.power.max_slip * per_slip < 0.2 {
+                let weighted = if s.power.max_slip * per_slip < wear::KTH_SLOW {
                     wear::KTH_K2 * s.power.sum
                 } else {
                     // k2 on all, corrected where elements slide faster: Σ μp|S| = bound_scale
@@ -257,7 +257,7 @@ impl DamageSum {
                     let [middle, above] = velocity_classes(
                         &s.shape[..n],
                         &s.slip[..n],
-                        (0.2 / per_slip, 0.7 / per_slip),
+                        (wear::KTH_SLOW / per_slip, wear::KTH_FAST / per_slip),
                     );
                     wear::KTH_K2 * s.power.sum
                         + s.bound_scale

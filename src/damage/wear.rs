@@ -86,11 +86,15 @@ pub fn kth_coefficient(pressure: f64, sliding_velocity: f64, hardness: f64) -> f
     }
 }
 
+/// The KTH map's sliding velocities [m/s] between its regions k2 and k3, and k3 and k4.
+pub const KTH_SLOW: f64 = 0.2;
+pub const KTH_FAST: f64 = 0.7;
+
 /// The KTH map's coefficient below its seizure pressure, by the sliding velocity [m/s].
 pub fn kth_sliding_coefficient(sliding_velocity: f64) -> f64 {
-    if sliding_velocity < 0.2 {
+    if sliding_velocity < KTH_SLOW {
         KTH_K2
-    } else if sliding_velocity <= 0.7 {
+    } else if sliding_velocity <= KTH_FAST {
         KTH_K3
     } else {
         KTH_K4
