@@ -173,6 +173,8 @@ pub fn to_json(values: &Values, run: &ConicityRun) -> Value {
                 "rLeft": p.left.rolling_radius,
                 "yRailRight": p.right.y_rail,
                 "yRailLeft": p.left.y_rail,
+                "yWheelRight": p.right.y_wheel,
+                "yWheelLeft": p.left.y_wheel,
                 "contactAngleRight": p.right.contact_angle,
                 "contactAngleLeft": p.left.contact_angle,
             })

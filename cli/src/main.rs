@@ -102,10 +102,10 @@ struct WearArgs {
     #[arg(long, value_name = "METRES")]
     distance: f64,
     /// The largest depth one update removes [m] (the distance is reduced to it)
-    #[arg(long, value_name = "METRES", default_value_t = 1e-4)]
+    #[arg(long, value_name = "METRES", default_value_t = railcontact_cli::wear::DEFAULT_MAX_DEPTH)]
     max_depth: f64,
     /// Standard deviation of the Gaussian smoothing of the depths [m]
-    #[arg(long, value_name = "METRES", default_value_t = 1e-3)]
+    #[arg(long, value_name = "METRES", default_value_t = railcontact_cli::wear::DEFAULT_SMOOTHING)]
     smoothing: f64,
     /// Directory of the worn profiles (worn_wheel.txt, worn_rail.txt; created if missing)
     #[arg(long, value_name = "DIR")]

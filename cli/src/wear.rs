@@ -34,6 +34,11 @@ pub struct WearOptions {
     pub out: PathBuf,
 }
 
+/// The largest depth one update removes unless told [m].
+pub const DEFAULT_MAX_DEPTH: f64 = 1e-4;
+/// The Gaussian smoothing of the depths unless told: its standard deviation [m].
+pub const DEFAULT_SMOOTHING: f64 = 1e-3;
+
 /// File names of the worn profiles and of the depths removed in the output directory.
 pub const WORN_WHEEL: &str = "worn_wheel.txt";
 pub const WORN_RAIL: &str = "worn_rail.txt";
@@ -163,8 +168,13 @@ fn read_records(paths: &[PathBuf]) -> Result<WearRecords, Failure> {
     Ok(sum)
 }
 
-/// Writes points [m] as two-column text in mm.
-fn write_profile(path: &Path, header: &str, (y, z): (Vec<f64>, Vec<f64>)) -> Result<(), Failure> {
+/// Writes points [m] as two-column text in mm (6 decimals: 1 nm) after the comment lines
+/// `header` — the format the element reads as a two-column profile file.
+pub fn write_profile(
+    path: &Path,
+    header: &str,
+    (y, z): (Vec<f64>, Vec<f64>),
+) -> Result<(), Failure> {
     let mut text = header.to_string();
     for (y, z) in y.iter().zip(&z) {
         let _ = writeln!(text, "{:.6} {:.6}", y * 1e3, z * 1e3);

@@ -11,6 +11,9 @@
 //!
 //! The evaluations release the GIL.
 
+mod profile;
+mod studies;
+
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
@@ -35,7 +38,7 @@ create_exception!(
      cannot carry (the command's exit code 2, FMI Discard)."
 );
 
-fn to_py(f: Failure) -> PyErr {
+pub(crate) fn to_py(f: Failure) -> PyErr {
     match f {
         Failure::Error(m) => RailcontactError::new_err(m),
         Failure::Discard(m) => DiscardError::new_err(m),
@@ -44,7 +47,7 @@ fn to_py(f: Failure) -> PyErr {
 
 /// The FMU's values at their start values, overridden by the case document `text` (a JSON
 /// object of parameter and input names; relative profile paths from the working directory).
-fn case_values(text: &str) -> Result<Values, Failure> {
+pub(crate) fn case_values(text: &str) -> Result<Values, Failure> {
     let mut values = Values::from_start(INFO.variables, INFO.counts);
     let case = case::parse(text).map_err(|e| Failure::Error(e.message("case")))?;
     case.apply(&mut values, None);
@@ -115,8 +118,9 @@ fn out_of_range(info: &VarInfo, what: &str) -> Failure {
     ))
 }
 
-/// A batch's output columns (name, float64 bytes) and its rows' status (int32 bytes).
-type BatchOut<'py> = (Vec<(String, Bound<'py, PyBytes>)>, Bound<'py, PyBytes>);
+/// A batch's outputs: the Real outputs' names, their values row by row (rows × names float64
+/// bytes, native order) and the rows' status (int32 bytes).
+type BatchOut<'py> = (Vec<&'static str>, Bound<'py, PyBytes>, Bound<'py, PyBytes>);
 
 /// An input column of a batch: its variable and its values.
 struct Column<'a> {
@@ -131,7 +135,8 @@ struct Column<'a> {
 /// [`Wheelset`] gives row by row), or with `independent` each from the initialized model's
 /// state (what [`solve_json`] gives for that case) — bit for bit, with the profiles loaded once. Returns every Real output as a column
 /// of float64 bytes, and the rows' status (0 ok, 1 implausible state, 2 refused: its outputs
-/// NaN) as int32 bytes.
+/// NaN) as int32 bytes — the outputs as one row-major matrix (names × rows), which NumPy views
+/// column by column without a copy.
 #[pyfunction]
 #[pyo3(signature = (case, names, columns, independent=false))]
 fn solve_batch<'py>(
@@ -180,24 +185,23 @@ fn solve_batch<'py>(
     let (out, status) = py
         .allow_threads(|| batch(&case, &inputs, rows, independent))
         .map_err(to_py)?;
-    let columns = outputs()
-        .zip(out)
-        .map(|(info, column)| {
-            let bytes: Vec<u8> = column.iter().flat_map(|v| v.to_ne_bytes()).collect();
-            (info.name.to_string(), PyBytes::new(py, &bytes))
-        })
-        .collect();
+    let bytes: Vec<u8> = out.iter().flat_map(|v| v.to_ne_bytes()).collect();
     let status: Vec<u8> = status.iter().flat_map(|s| s.to_ne_bytes()).collect();
-    Ok((columns, PyBytes::new(py, &status)))
+    Ok((
+        outputs().map(|v| v.name).collect(),
+        PyBytes::new(py, &bytes),
+        PyBytes::new(py, &status),
+    ))
 }
 
-/// [`solve_batch`]'s loop: the output columns and the rows' status.
+/// [`solve_batch`]'s loop: the Real outputs row by row (in `real_outputs()`'s order) and the
+/// rows' status.
 fn batch(
     case: &str,
     inputs: &[Column<'_>],
     rows: usize,
     independent: bool,
-) -> Result<(Vec<Vec<f64>>, Vec<i32>), Failure> {
+) -> Result<(Vec<f64>, Vec<i32>), Failure> {
     let mut values = case_values(case)?;
     // Range checks as `fmi2SetReal` does them, before the first evaluation.
     for c in inputs {
@@ -218,8 +222,8 @@ fn batch(
     // `solve_json` makes); else each from the last, as an FMU's steps.
     let mut initial = Vec::new();
     model.save_state(&mut initial);
-    let n_out = outputs().count();
-    let mut out = vec![Vec::with_capacity(rows); n_out];
+    let slots: Vec<usize> = outputs().map(|v| v.slot).collect();
+    let mut out = Vec::with_capacity(rows * slots.len());
     let mut status = Vec::with_capacity(rows);
     for k in 0..rows {
         if independent {
@@ -236,12 +240,10 @@ fn batch(
             Err(railcontact::fmi::model::ModelError::Discard(_)) => 2,
             Err(e) => return Err(e.into()),
         };
-        for (column, info) in out.iter_mut().zip(outputs()) {
-            column.push(if code == 2 {
-                f64::NAN
-            } else {
-                values.reals[info.slot]
-            });
+        if code == 2 {
+            out.extend(slots.iter().map(|_| f64::NAN));
+        } else {
+            out.extend(slots.iter().map(|&s| values.reals[s]));
         }
         status.push(code);
     }
@@ -295,9 +297,22 @@ impl Wheelset {
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Wheelset>()?;
+    m.add_class::<profile::Profile>()?;
+    m.add_function(wrap_pyfunction!(studies::conicity_json, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::wear_update_json, m)?)?;
     m.add_function(wrap_pyfunction!(solve_json, m)?)?;
     m.add_function(wrap_pyfunction!(solve_batch, m)?)?;
     m.add_function(wrap_pyfunction!(real_outputs, m)?)?;
+    m.add(
+        "CONICITY_AMPLITUDES",
+        railcontact::wheelset::conicity::DEFAULT_AMPLITUDES.to_vec(),
+    )?;
+    m.add(
+        "CONICITY_STEP",
+        railcontact::wheelset::conicity::DEFAULT_Y_STEP,
+    )?;
+    m.add("WEAR_MAX_DEPTH", railcontact_cli::wear::DEFAULT_MAX_DEPTH)?;
+    m.add("WEAR_SMOOTHING", railcontact_cli::wear::DEFAULT_SMOOTHING)?;
     m.add("RailcontactError", m.py().get_type::<RailcontactError>())?;
     m.add("DiscardError", m.py().get_type::<DiscardError>())?;
     Ok(())
