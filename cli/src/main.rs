@@ -181,7 +181,8 @@ struct SweepArgs {
 /// rolling radius and half the contact-point distance of the centred wheelset) [m], "conicity"
 /// per amplitude A [m] (harmonic linearisation, EN 15302 Annex C; Klingel integration, Annex B,
 /// with its wavelength [m]; null where the motion does not oscillate) and "deltaR" per shift
-/// (y, deltaR, roll, rRight, rLeft, yRailRight, yRailLeft, contactAngleRight,
+/// (y, deltaR, roll, rRight, rLeft, yRailRight, yRailLeft: the contact points in the mounted
+/// rail frames, yWheelRight, yWheelLeft: in the wheel profile frames, contactAngleRight,
 /// contactAngleLeft; m and rad).
 ///
 /// With --load Q the rolling radii are the loaded element's instead (the case's normal model
