@@ -52,6 +52,7 @@ fn solve(ws: &mut Wheelset, y: f64) -> WheelsetResult {
         roll: 0.0,
         vertical: Vertical::Loads { left: Q, right: Q },
         creepages: rolling(),
+        track: Default::default(),
     };
     let mut out = WheelsetResult::default();
     ws.solve(&input, &mut out)
@@ -293,6 +294,7 @@ fn coupled_strips_carry_a_prescribed_load_and_position() {
         roll: 0.0,
         vertical: Vertical::Position { z: loaded.right.z },
         creepages: rolling(),
+        track: Default::default(),
     };
     let mut out = WheelsetResult::default();
     ws.solve(&input, &mut out).expect("position");

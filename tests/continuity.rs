@@ -168,6 +168,7 @@ impl Sweep {
                 yaw_rate: 0.0,
                 omega: 30.0 / 0.46,
             },
+            track: Default::default(),
         };
         self.ws
             .solve(&input, &mut self.out)

@@ -169,6 +169,7 @@ fn a_patch_that_adheres_throughout_still_wears_mildly() {
                     },
                     vx: SPEED,
                 },
+                track: Default::default(),
             };
             ws.solve(&input, &mut out).expect("solves");
             let ctx = format!("{model:?} {tangential:?} ξ {xi}");

@@ -50,6 +50,7 @@ fn tangential_force(model: NormalModel, fine: bool, creepage: Creepage) -> [f64;
             right: LOAD,
         },
         creepages: Creepages::Prescribed { creepage, vx: 30.0 },
+        track: Default::default(),
     };
     let mut out = WheelsetResult::default();
     ws.solve(&input, &mut out).unwrap();

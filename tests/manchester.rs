@@ -199,6 +199,7 @@ fn input(pose: &Pose, roll_sign: f64) -> WheelsetInput {
             yaw_rate: 0.0,
             omega: -pose.vpitch,
         },
+        track: Default::default(),
     }
 }
 

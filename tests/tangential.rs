@@ -89,6 +89,7 @@ fn solve(ws: &mut Wheelset, creepage: Creepage) -> WheelsetResult {
         roll: 0.0,
         vertical: Vertical::Loads { left: Q, right: Q },
         creepages: Creepages::Prescribed { creepage, vx: VX },
+        track: Default::default(),
     };
     let mut out = WheelsetResult::default();
     ws.solve(&input, &mut out).expect("central case solves");
@@ -349,6 +350,7 @@ fn frictional_power_against_the_exact_theory() {
                     creepage: c,
                     vx: speed,
                 },
+                track: Default::default(),
             };
             let mut out = WheelsetResult::default();
             ws.solve(&input, &mut out).expect("central case solves");

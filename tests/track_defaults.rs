@@ -24,6 +24,7 @@ fn input(y: f64, yaw: f64, creepages: Creepages) -> WheelsetInput {
         roll: 0.0,
         vertical: Vertical::Loads { left: Q, right: Q },
         creepages,
+        track: Default::default(),
     }
 }
 
@@ -202,6 +203,7 @@ fn default_inputs_roll_freely() {
                 yaw_rate: start("yawRate"),
                 omega: start("omega"),
             },
+            track: Default::default(),
         },
     );
     let mu_q = start("mu") * start("Qright");

@@ -31,6 +31,7 @@ fn a_warm_started_solve_gives_the_cold_solution() {
             },
             vx: 2.0,
         },
+        track: Default::default(),
     };
     for model in [
         NormalModel::Hertz,

@@ -17,8 +17,8 @@ use crate::tangential::fastsim::Creepage;
 use crate::tangential::patch::TangentialModel;
 use crate::wheelset::validity::validity;
 use crate::wheelset::{
-    Creepages, SideResult, Slot, Trend, Vertical, WarmStart, Wheelset, WheelsetError,
-    WheelsetInput, WheelsetResult, WheelsetSettings, MAX_PATCHES, V_MIN,
+    Creepages, RailInput, SideResult, Slot, TrackInput, Trend, Vertical, WarmStart, Wheelset,
+    WheelsetError, WheelsetInput, WheelsetResult, WheelsetSettings, MAX_PATCHES, V_MIN,
 };
 use std::path::{Path, PathBuf};
 
@@ -96,6 +96,12 @@ const CREEPAGE_STEP: f64 = 1e-6;
 /// search's sampling step, so that the reference points move smoothly over it, and a change of the
 /// rolling radius (λ ≈ 0.2) of 2 µm — a longitudinal creepage of ~4e−6.
 const POSE_STEP: f64 = 1e-5;
+
+/// Lever of the track curvature and of a rail's roll rate on the creepages [m]: a wheel's
+/// contact lies ~0.75 m from the track's centre line (Δξ = κ × 0.75 m), and a rail's roll rate
+/// moves its contact points with levers of the rail head's size; 1 m keeps the steps
+/// [`CREEPAGE_STEP`]-sized.
+const CURVATURE_LEVER: f64 = 1.0;
 
 /// Difference step of the prescribed vertical position [m]: 1e−3 of a tread contact's approach
 /// (~0.1 mm).
@@ -296,7 +302,7 @@ fn patch_vars(right: bool, k: usize) -> PatchVars {
 
 /// Totals of one side: nPatches, then Fx, Fy, Fz, z, Mx, My, Mz, YQ, Tgamma, wheelWearRate,
 /// railWearRate, rcfDamage.
-fn side_vars(right: bool) -> (IntegerVar, [RealVar; 12]) {
+fn side_vars(right: bool) -> (IntegerVar, [RealVar; 15]) {
     use var::*;
     if right {
         (
@@ -314,6 +320,9 @@ fn side_vars(right: bool) -> (IntegerVar, [RealVar; 12]) {
                 right_wheelWearRate,
                 right_railWearRate,
                 right_rcfDamage,
+                right_rail_Fy,
+                right_rail_Fz,
+                right_rail_Mx,
             ],
         )
     } else {
@@ -332,6 +341,9 @@ fn side_vars(right: bool) -> (IntegerVar, [RealVar; 12]) {
                 left_wheelWearRate,
                 left_railWearRate,
                 left_rcfDamage,
+                left_rail_Fy,
+                left_rail_Fz,
+                left_rail_Mx,
             ],
         )
     }
@@ -536,6 +548,47 @@ pub fn input(
                 omega: values.real(var::omega),
             }
         },
+        track: TrackInput {
+            curvature: values.real(var::trackCurvature),
+            left: rail_input(values, &RAIL_VARS[0]),
+            right: rail_input(values, &RAIL_VARS[1]),
+        },
+    }
+}
+
+/// The rails' inputs, left and right, in [`RailInput`]'s order (dy, dz, roll, vy, vz,
+/// rollRate).
+const RAIL_VARS: [[RealVar; 6]; 2] = {
+    use var::*;
+    [
+        [
+            left_rail_dy,
+            left_rail_dz,
+            left_rail_roll,
+            left_rail_vy,
+            left_rail_vz,
+            left_rail_rollRate,
+        ],
+        [
+            right_rail_dy,
+            right_rail_dz,
+            right_rail_roll,
+            right_rail_vy,
+            right_rail_vz,
+            right_rail_rollRate,
+        ],
+    ]
+};
+
+fn rail_input(values: &Values, vars: &[RealVar; 6]) -> RailInput {
+    let [dy, dz, roll, vy, vz, roll_rate] = vars.map(|v| values.real(v));
+    RailInput {
+        dy,
+        dz,
+        roll,
+        vy,
+        vz,
+        roll_rate,
     }
 }
 
@@ -557,6 +610,9 @@ fn write_side(values: &mut Values, right: bool, side: &SideResult) -> Result<(),
         side.wheel_wear_rate,
         side.rail_wear_rate,
         side.rcf_damage,
+        side.rail_force[1],
+        side.rail_force[2],
+        side.rail_moment_x,
     ];
     set_outputs(values, totals, total_values)?;
     for k in 0..MAX_PATCHES {
@@ -677,11 +733,26 @@ impl Model for WheelRailContact {
         match RealVar(v.slot) {
             var::y | var::yaw | var::roll => POSE_STEP,
             var::z => HEIGHT_STEP,
+            var::trackCurvature => CREEPAGE_STEP / CURVATURE_LEVER,
             var::Qleft | var::Qright => LOAD_STEP * values.reals[v.slot].abs().max(1e3),
             var::vx | var::vy | var::yawRate => CREEPAGE_STEP * speed,
             var::omega => CREEPAGE_STEP * speed / values.real(var::wheelRadius),
             var::xi | var::eta => CREEPAGE_STEP,
             var::phi => SPIN_STEP,
+            rail if RAIL_VARS.iter().any(|r| r[..3].contains(&rail)) => {
+                if rail == var::left_rail_dz || rail == var::right_rail_dz {
+                    HEIGHT_STEP
+                } else {
+                    POSE_STEP
+                }
+            }
+            rail if RAIL_VARS.iter().any(|r| r[3..].contains(&rail)) => {
+                if rail == var::left_rail_rollRate || rail == var::right_rail_rollRate {
+                    CREEPAGE_STEP * speed / CURVATURE_LEVER
+                } else {
+                    CREEPAGE_STEP * speed
+                }
+            }
             _ => crate::fmi::derivative::default_step(values, v),
         }
     }

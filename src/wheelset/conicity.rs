@@ -435,6 +435,7 @@ impl RollingRadiusDifference {
                     creepage: Creepage::default(),
                     vx: 1.0,
                 },
+                track: Default::default(),
             };
             let mut out = WheelsetResult::default();
             wheelset

@@ -213,7 +213,7 @@ pub(super) fn add_patch(
         return Ok(0.0);
     }
     let gamma = reference.contact_angle;
-    let (creepage, speed) = creepages_at(input, side.sigma, reference, gamma);
+    let (creepage, speed) = creepages_at(input, side.sigma, &side.rail, reference, gamma);
     result.y_rail = reference.y_rail;
     result.position = point_position(side.sigma, reference, input.yaw, input.roll).into();
     result.contact_angle = gamma;

@@ -1,11 +1,15 @@
 //! Wheelset kinematics: creepages at a contact point from the rigid-body motion, contact axes.
 //!
-//! Track axes: x forward, y right, z down (`docs/conventions.md`). The wheelset centre C moves
-//! with v_C = (vx, vy, 0); the wheelset turns with Ω = ψ̇ e_z − ω e_axle, the axle direction
-//! e_axle = (−sin ψ, cos ψ, 0) yawed by ψ. A material point P of the wheel then moves with
-//! v = v_C + Ω × (P − C), and the creepages of the wheel relative to the rail at a contact
-//! point with contact axes (e_x, e_y, e_z) are ξ = v·e_x/V, η = v·e_y/V, φ = Ω·e_z/V, with
-//! V = max(|vx|, [`V_MIN`]). Contact axes at contact angle γ on side σ (+1 right, −1 left):
+//! Track axes: x forward, y right, z down (`docs/conventions.md`), following the track's centre
+//! line at the wheelset, so that on a curve of curvature κ they turn at vx κ about z
+//! (docs/theory.md §8.1). The wheelset centre C, at lateral y, moves with
+//! v_C = (vx (1 − κ y), vy, 0); the wheelset turns with Ω = (ψ̇ + vx κ) e_z − ω e_axle, the axle
+//! direction e_axle = (−sin ψ, cos ψ, 0) yawed by ψ. A material point P of the wheel then moves
+//! with v = v_C + Ω × (P − C); the rail's material point there with
+//! v_R = (0, vy_R, vz_R) + θ̇_R e_x × (P − O_R) (its origin O_R's velocity and roll rate). The
+//! creepages of the wheel relative to the rail at a contact point with contact axes
+//! (e_x, e_y, e_z) are ξ = (v − v_R)·e_x/V, η = (v − v_R)·e_y/V, φ = Ω·e_z/V (the rail's roll
+//! rate has no component along e_z), with V = max(|vx|, [`V_MIN`]). Contact axes at contact angle γ on side σ (+1 right, −1 left):
 //! e_x = (1, 0, 0), e_y = (0, cos γ, −σ sin γ), e_z = (0, σ sin γ, cos γ) (from the wheel into
 //! the rail).
 
@@ -15,16 +19,42 @@ use super::{Creepages, WheelsetInput, V_MIN};
 use crate::geometry::search::ContactPoint;
 use crate::tangential::fastsim::Creepage;
 
-/// Creepages of the wheel relative to the rail at contact point `p` with contact angle `gamma`,
-/// and the reference speed V [m/s].
+/// The rail under a wheel as the creepages see it (track axes): its origin's velocity [m/s],
+/// its roll rate [rad/s] and its origin relative to the wheelset centre [m].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(super) struct RailFrame {
+    pub velocity: Vector3<f64>,
+    pub roll_rate: f64,
+    pub origin: Vector3<f64>,
+}
+
+impl RailFrame {
+    /// The velocity of the rail's material point at `arm` from the wheelset centre.
+    fn velocity_at(&self, arm: &Vector3<f64>) -> Vector3<f64> {
+        let lever = arm - self.origin;
+        // θ̇ e_x × (P − O_R) = θ̇ (0, −lever_z, lever_y).
+        self.velocity + Vector3::new(0.0, -lever.z, lever.y) * self.roll_rate
+    }
+}
+
+/// Creepages of the wheel relative to the rail `rail` at contact point `p` with contact angle
+/// `gamma`, and the reference speed V [m/s].
 pub(super) fn creepages_at(
     input: &WheelsetInput,
     sigma: f64,
+    rail: &RailFrame,
     p: &ContactPoint,
     gamma: f64,
 ) -> (Creepage, f64) {
     let point = Vector3::new(p.longitudinal, p.lateral, p.rolling_radius);
-    creepages_with(input, sigma, point, gamma.sin_cos(), input.yaw.sin_cos())
+    creepages_with(
+        input,
+        sigma,
+        rail,
+        point,
+        gamma.sin_cos(),
+        input.yaw.sin_cos(),
+    )
 }
 
 /// [`creepages_at`] at the point `point` = (longitudinal, lateral from the wheelset centre
@@ -33,6 +63,7 @@ pub(super) fn creepages_at(
 pub(super) fn creepages_with(
     input: &WheelsetInput,
     sigma: f64,
+    rail: &RailFrame,
     point: Vector3<f64>,
     angle_trig: (f64, f64),
     (sin_yaw, cos_yaw): (f64, f64),
@@ -48,9 +79,11 @@ pub(super) fn creepages_with(
             let speed = vx.abs().max(V_MIN);
             // P − C in track axes: the side's lateral coordinate mirrored on the left wheel.
             let arm = Vector3::new(point.x, sigma * point.y, point.z);
-            let angular_velocity = Vector3::new(omega * sin_yaw, -omega * cos_yaw, yaw_rate);
-            let centre_velocity = Vector3::new(vx, vy, 0.0);
-            let v = centre_velocity + angular_velocity.cross(&arm);
+            let kappa = input.track.curvature;
+            let angular_velocity =
+                Vector3::new(omega * sin_yaw, -omega * cos_yaw, yaw_rate + vx * kappa);
+            let centre_velocity = Vector3::new(vx * (1.0 - kappa * input.y), vy, 0.0);
+            let v = centre_velocity + angular_velocity.cross(&arm) - rail.velocity_at(&arm);
             let (e_y, e_z) = contact_axes_of(sigma, angle_trig);
             let creepage = Creepage {
                 xi: v.x / speed,
@@ -119,6 +152,7 @@ pub(super) fn tangential_in_axes(
 pub(super) struct NonPlanar {
     kinematics: WheelsetInput,
     sigma: f64,
+    rail: RailFrame,
     /// (sin ψ, cos ψ) of the yaw.
     yaw_trig: (f64, f64),
 }
@@ -126,12 +160,13 @@ pub(super) struct NonPlanar {
 impl NonPlanar {
     /// `None` with prescribed creepages: they hold on every strip as given (in each strip's own
     /// axes), so that no creepage prescribed means no creep force.
-    pub(super) fn new(input: &WheelsetInput, sigma: f64) -> Option<Self> {
+    pub(super) fn new(input: &WheelsetInput, sigma: f64, rail: &RailFrame) -> Option<Self> {
         match input.creepages {
             Creepages::Prescribed { .. } => None,
             Creepages::Kinematic { .. } => Some(Self {
                 kinematics: *input,
                 sigma,
+                rail: *rail,
                 yaw_trig: input.yaw.sin_cos(),
             }),
         }
@@ -143,6 +178,7 @@ impl NonPlanar {
         creepages_with(
             &self.kinematics,
             self.sigma,
+            &self.rail,
             point,
             angle_trig,
             self.yaw_trig,

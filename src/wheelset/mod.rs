@@ -66,6 +66,7 @@ use crate::tangential::fastsim::{Creepage, Fastsim, FastsimSettings};
 use crate::tangential::patch::TangentialModel;
 use crate::tangential::strip_fastsim::{StripFastsim, StripFastsimResult, TangentialStrip};
 use balance::check_balance;
+use kinematics::RailFrame;
 use strip_side::{solve_strips, StripSettings, StripSide};
 
 /// Patches reported per wheel.
@@ -160,6 +161,60 @@ pub enum Creepages {
     Prescribed { creepage: Creepage, vx: f64 },
 }
 
+/// A rail's displacement from its design position and its velocity, in track axes
+/// (`docs/conventions.md`, "Track and rails"): lateral `dy` and vertical `dz` shifts [m] and the
+/// roll [rad] of the rail profile about its origin (the top of the rail as mounted; positive
+/// lowering the rail's right-hand side, as the wheelset's roll), and their rates.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RailInput {
+    pub dy: f64,
+    pub dz: f64,
+    pub roll: f64,
+    pub vy: f64,
+    pub vz: f64,
+    pub roll_rate: f64,
+}
+
+/// The FMU names of the rails' inputs ([`RailInput`]'s fields in order), left and right.
+pub const RAIL_INPUTS: [[&str; 6]; 2] = [
+    [
+        "left.rail.dy",
+        "left.rail.dz",
+        "left.rail.roll",
+        "left.rail.vy",
+        "left.rail.vz",
+        "left.rail.rollRate",
+    ],
+    [
+        "right.rail.dy",
+        "right.rail.dz",
+        "right.rail.roll",
+        "right.rail.vy",
+        "right.rail.vz",
+        "right.rail.rollRate",
+    ],
+];
+
+/// The track at the wheelset: its curvature [1/m] (positive turning towards the right rail)
+/// and the two rails' displacements and velocities. The default is straight, rigid track.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TrackInput {
+    pub curvature: f64,
+    pub left: RailInput,
+    pub right: RailInput,
+}
+
+impl TrackInput {
+    /// The rail of side `sigma` (+1 right, −1 left).
+    pub fn rail(&self, sigma: f64) -> &RailInput {
+        if sigma > 0.0 {
+            &self.right
+        } else {
+            &self.left
+        }
+    }
+}
+
 /// Pose and motion of the wheelset.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WheelsetInput {
@@ -171,6 +226,9 @@ pub struct WheelsetInput {
     pub roll: f64,
     pub vertical: Vertical,
     pub creepages: Creepages,
+    /// The track: curvature and rail motion (relative to which the pose and the velocities
+    /// above are given).
+    pub track: TrackInput,
 }
 
 /// One contact patch (forces of the rail on the wheel, contact axes).
@@ -295,6 +353,11 @@ pub struct SideResult {
     pub derailment_quotient: f64,
     /// The wheel's downward displacement from nominal at which it carries its load [m].
     pub z: f64,
+    /// The wheel's force on the rail, track axes [N] (−`force`), and its moment about the rail
+    /// profile's origin (the top of the rail as mounted, displaced with the rail), about the
+    /// track's x axis [N·m].
+    pub rail_force: [f64; 3],
+    pub rail_moment_x: f64,
     /// Sums over the wheel's reported patches: Tγ [J/m], wear rates [kg/m] and the Whole Life
     /// Rail Model's damage per wheel pass of each patch's Tγ [-] (`crate::damage::fatigue`).
     pub t_gamma: f64,
@@ -308,6 +371,27 @@ impl SideResult {
     /// slot while it exists).
     pub fn shown_patches(&self) -> impl Iterator<Item = &PatchResult> + '_ {
         self.patches.iter().filter(|p| p.weight > 0.0)
+    }
+
+    /// Turns the wheel's vectors (forces, moments, patch positions) by `angle` [rad] about the
+    /// track's x axis (positive lowering the right-hand side, as the roll).
+    fn turn_about_x(&mut self, angle: f64) {
+        let (sin, cos) = angle.sin_cos();
+        let turn = |v: &mut [f64; 3]| {
+            let (y, z) = (v[1], v[2]);
+            v[1] = y * cos - z * sin;
+            v[2] = y * sin + z * cos;
+        };
+        turn(&mut self.force);
+        turn(&mut self.moment);
+        let (n, m, g) = (self.n_regions, self.n_groups, MAX_PATCHES);
+        for p in self.patches[..g]
+            .iter_mut()
+            .chain(&mut self.regions[..n])
+            .chain(&mut self.groups[..m])
+        {
+            turn(&mut p.position);
+        }
     }
 
     /// Every reported patch of the wheel, also those beyond the output slots.
@@ -325,6 +409,8 @@ impl SideResult {
         self.force = [0.0; 3];
         self.moment = [0.0; 3];
         self.derailment_quotient = 0.0;
+        self.rail_force = [0.0; 3];
+        self.rail_moment_x = 0.0;
         self.z = z;
         self.t_gamma = 0.0;
         self.wheel_wear_rate = 0.0;
@@ -429,6 +515,8 @@ struct Side {
     tangential_strips: Vec<TangentialStrip>,
     /// `y_rail` of the Hertz patches of the last evaluation (for their traction field).
     last_y_rail: [f64; MAX_GROUPS],
+    /// The rail's motion as the creepages of this evaluation see it.
+    rail: RailFrame,
     /// The last prescribed-load solution, the next one's starting point.
     warm: Option<WarmStart>,
     /// The multi-Hertzian patches of the last normal solution: reference point, normal solution,
@@ -533,6 +621,7 @@ impl Wheelset {
                 },
                 tangential_strips: vec![TangentialStrip::default(); MAX_STRIPS],
                 last_y_rail: [0.0; MAX_GROUPS],
+                rail: RailFrame::default(),
                 warm: None,
                 ellipses: [(
                     ContactPoint::default(),
@@ -734,6 +823,23 @@ fn check_input(input: &WheelsetInput) -> Result<(), InputError> {
     require_finite("y", input.y)?;
     require_finite("yaw", input.yaw)?;
     require_finite("roll", input.roll)?;
+    require_finite("trackCurvature", input.track.curvature)?;
+    for (rail, names) in [
+        (&input.track.left, RAIL_INPUTS[0]),
+        (&input.track.right, RAIL_INPUTS[1]),
+    ] {
+        let values = [
+            rail.dy,
+            rail.dz,
+            rail.roll,
+            rail.vy,
+            rail.vz,
+            rail.roll_rate,
+        ];
+        for (name, value) in names.into_iter().zip(values) {
+            require_finite(name, value)?;
+        }
+    }
     match input.vertical {
         Vertical::Loads { left, right } => {
             require_non_negative("Qleft", left)?;
@@ -966,10 +1072,37 @@ fn solve_side(
     out: &mut SideResult,
 ) -> Result<(), WheelsetError> {
     let s = side.sigma;
+    // The contact is solved in the frame of the rail as displaced (docs/theory.md §8.4): there
+    // the rail is at its design position and the wheelset carries the opposite displacement.
+    // In the side frame (lateral ℓ = σ y towards the field side, z down) the wheelset centre
+    // lies at (a, b) = (ℓ − Y_O − σ dy, z − h − dz) from the rail's origin (Y_O its design
+    // lateral, h = wheelRadius the centre's nominal height); turned by −σθ about the origin it is
+    // at (a′, b′), the centre the rail frame sees: lateral Y_O + a′, lowering b′ + h.
+    let rail = *input.track.rail(s);
+    let theta = s * rail.roll;
+    let lift = ctx.settings.setup.wheel_radius;
+    let origin = side.geometry.rail().origin_lateral();
+    let (sin_t, cos_t) = theta.sin_cos();
+    let (lateral, z) = if theta == 0.0 {
+        (s * (input.y - rail.dy), z - rail.dz)
+    } else {
+        let (a, b) = (s * (input.y - rail.dy) - origin, z - lift - rail.dz);
+        (origin + a * cos_t + b * sin_t, lift - a * sin_t + b * cos_t)
+    };
     let pose = SidePose {
-        lateral: s * input.y,
+        lateral,
         yaw: s * input.yaw,
-        roll: s * input.roll,
+        roll: s * input.roll - theta,
+    };
+    let rolled = WheelsetInput {
+        roll: input.roll - rail.roll,
+        ..*input
+    };
+    let input = &rolled;
+    side.rail = RailFrame {
+        velocity: Vector3::new(0.0, rail.vy, rail.vz),
+        roll_rate: rail.roll_rate,
+        origin: Vector3::new(0.0, s * origin + rail.dy - input.y, rail.dz + lift),
     };
     side.geometry
         .search(&pose)
@@ -1006,9 +1139,23 @@ fn solve_side(
     check_balance(side.name, load, out)?;
     let mu = ctx.settings.material.friction;
     patch_damage(side, &ctx.settings.damage, mu, strip_model, out);
-    out.derailment_quotient = derailment_quotient(s, out.force);
     regions::report(side, input, ctx.settings.planar_patch, out);
     out.finish_damage(ctx.settings.damage.shear_yield_strength);
+    // The wheel's wrench on the rail about the rail's origin (in the rail's frame; a turn about
+    // x keeps the x moment), then the rail frame's vectors turned back into track axes.
+    let [_, fy, fz] = out.force;
+    let (arm_y, arm_z) = (s * (lateral - origin), out.z - lift);
+    out.rail_moment_x = -(out.moment[0] + arm_y * fz - arm_z * fy);
+    if rail.roll != 0.0 {
+        out.turn_about_x(rail.roll);
+    }
+    out.rail_force = out.force.map(|f| -f);
+    // The wheel's lowering from the rail frame's back to the track's.
+    if theta != 0.0 {
+        out.z = (lateral - origin) * sin_t + (out.z - lift) * cos_t + lift;
+    }
+    out.z += rail.dz;
+    out.derailment_quotient = derailment_quotient(s, out.force);
     // A load without a tangential problem (no patch) keeps the approach with no creep component.
     side.warm = (load.is_some_and(|q| q > 0.0) && approach > 0.0)
         .then(|| WarmStart::after(warm, approach, creep.unwrap_or(0.0), strip_ratio, slope));

@@ -567,7 +567,7 @@ pub(super) fn strip_patch_result(
         ..ContactPoint::default()
     };
     let gamma = reference.contact_angle;
-    let (creepage, speed) = creepages_at(input, side.sigma, &reference, gamma);
+    let (creepage, speed) = creepages_at(input, side.sigma, &side.rail, &reference, gamma);
     let equivalent = EquivalentEllipse::of(
         summary,
         ctx.shear_modulus,
@@ -647,7 +647,7 @@ fn solve_strip_tangential(
     let non_planar = if settings.planar_patch {
         None
     } else {
-        NonPlanar::new(input, side.sigma)
+        NonPlanar::new(input, side.sigma, &side.rail)
     };
     let n = patch.geom.len();
     // The strips' x is measured from the reference point (its yaw lead x_ref), where the

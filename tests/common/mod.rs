@@ -115,6 +115,7 @@ pub fn solve_pose(
             right: load,
         },
         creepages,
+        track: Default::default(),
     };
     let mut out = WheelsetResult::default();
     ws.solve(&input, &mut out)
@@ -194,6 +195,7 @@ pub fn central_input(y: f64, vy: f64) -> WheelsetInput {
             yaw_rate: 0.0,
             omega: 30.0 / 0.46 * (1.0 + 1e-3),
         },
+        track: Default::default(),
     }
 }
 
