@@ -13,7 +13,7 @@ use railcontact::models::wheel_rail_contact::INFO;
 use railcontact::normal::NormalModel;
 use railcontact::wheelset::{
     Creepages, PatchResult, RailInput, SideResult, TrackInput, Vertical, Wheelset, WheelsetInput,
-    WheelsetResult,
+    WheelsetResult, RAIL_INPUTS,
 };
 
 const Q: f64 = 78_500.0;
@@ -526,4 +526,98 @@ fn the_fmu_takes_the_track_inputs_and_gives_the_rail_forces() {
     let straight = evaluate(&[]);
     let d_phi = curved("right.p1.phi") - straight("right.p1.phi");
     assert!((d_phi - curved("right.p1.contactAngle").cos() / 500.0).abs() < 1e-6);
+}
+
+/// A long run as a track model drives it: a random walk of the wheelset's shift and yaw, the
+/// track's curvature (R ≥ 300 m either way) and both rails' displacements (±1 mm, ±1 mrad) and
+/// velocities, stepped through the FMU's model with its warm starts. Every step is answered
+/// with finite outputs and rails carrying the wheels' forces reversed; every 250th step equals a
+/// fresh instance's answer at the same inputs (the warm start changes nothing beyond the load
+/// balance's tolerance, 1e−6 of the load).
+#[test]
+fn a_random_walk_over_track_and_rails_stays_finite_balanced_and_history_free() {
+    let names: Vec<&str> = ["y", "yaw", "trackCurvature"]
+        .into_iter()
+        .chain(RAIL_INPUTS.iter().flatten().copied())
+        .collect();
+    // (bound, step) per input: the pose, the curvature, then per rail dy, dz, roll, vy, vz,
+    // rollRate.
+    let rail = [
+        (1e-3, 5e-5),
+        (1e-3, 5e-5),
+        (1e-3, 5e-5),
+        (0.05, 5e-3),
+        (0.05, 5e-3),
+        (0.05, 5e-3),
+    ];
+    let bounds: Vec<(f64, f64)> = [(5e-3, 1e-4), (3e-3, 1e-4), (1.0 / 300.0, 2e-4)]
+        .into_iter()
+        .chain(rail)
+        .chain(rail)
+        .collect();
+    let slot = |name: &str| INFO.variable(name).expect(name).slot;
+    let fresh = |model: i32| {
+        let mut values = Values::from_start(INFO.variables, INFO.counts);
+        values.integers[slot("normalModel")] = model;
+        let mut m = (INFO.create)(&Default::default());
+        m.initialize(&values).expect("initialize");
+        (m, values)
+    };
+    let outputs: Vec<usize> = INFO
+        .variables
+        .iter()
+        .filter(|v| v.causality == railcontact::fmi::variables::Causality::Output)
+        .filter(|v| v.ty == railcontact::fmi::variables::VarType::Real)
+        .map(|v| v.slot)
+        .collect();
+    for (model, steps) in [(1, 1500), (6, 600)] {
+        let (mut m, mut values) = fresh(model);
+        let mut state = vec![0.0; names.len()];
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64 ^ model as u64;
+        for k in 0..steps {
+            for (x, &(bound, step)) in state.iter_mut().zip(&bounds) {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                let unit = (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+                *x = (*x + step * unit).clamp(-bound, bound);
+            }
+            for (name, &x) in names.iter().zip(&state) {
+                values.reals[slot(name)] = x;
+            }
+            m.evaluate(&mut values, k as f64 * 1e-3)
+                .unwrap_or_else(|e| panic!("model {model} step {k} {state:?}: {e:?}"));
+            m.advance(&mut values, 1e-3).expect("advance");
+            assert!(
+                outputs.iter().all(|&s| values.reals[s].is_finite()),
+                "step {k}"
+            );
+            for side in ["left", "right"] {
+                for q in ["Fy", "Fz"] {
+                    let (rail, wheel) = (format!("{side}.rail.{q}"), format!("{side}.{q}"));
+                    assert_eq!(values.reals[slot(&rail)], -values.reals[slot(&wheel)]);
+                }
+            }
+            if k % 250 == 249 {
+                let (mut cold, mut cold_values) = fresh(model);
+                for (name, &x) in names.iter().zip(&state) {
+                    cold_values.reals[slot(name)] = x;
+                }
+                cold.evaluate(&mut cold_values, 0.0).expect("cold");
+                for name in [
+                    "left.Fy",
+                    "right.Fy",
+                    "left.Fz",
+                    "right.Mx",
+                    "right.rail.Mx",
+                ] {
+                    let (warm, cold) = (values.reals[slot(name)], cold_values.reals[slot(name)]);
+                    assert!(
+                        (warm - cold).abs() <= 1e-6 * Q,
+                        "model {model} step {k} {name}: {warm} warm, {cold} cold"
+                    );
+                }
+            }
+        }
+    }
 }
