@@ -621,3 +621,47 @@ fn a_random_walk_over_track_and_rails_stays_finite_balanced_and_history_free() {
         }
     }
 }
+
+/// The track inputs move the forces continuously: sweeps of a rail's roll over ±3 mrad and of
+/// the curvature over R ≥ 250 m either way, 600 steps each (a rail's lateral shift is the
+/// wheelset's, whose sweeps `tests/continuity.rs` runs), at a tread and a flange-root shift: no
+/// step changes a wheel's force by more than 0.5 % of the load (a jump between contact states
+/// would), and every sweep changes it.
+#[test]
+fn rail_roll_height_and_curvature_sweeps_are_continuous() {
+    for model in [NormalModel::Hertz, NormalModel::Analyn] {
+        let mut ws = wheelset(model, false);
+        for y in [0.0, 0.004] {
+            type Sweep = fn(&mut WheelsetInput, f64);
+            let sweeps: [(&str, f64, Sweep); 2] = [
+                ("roll", 3e-3, |i, x| i.track.right.roll = x),
+                ("curvature", 1.0 / 250.0, |i, x| i.track.curvature = x),
+            ];
+            for (name, bound, apply) in sweeps {
+                let mut last: Option<[f64; 3]> = None;
+                let (mut largest, mut total) = (0.0f64, 0.0f64);
+                for k in 0..=600 {
+                    let x = -bound + 2.0 * bound * k as f64 / 600.0;
+                    let mut pose = input(y, 0.0, TrackInput::default());
+                    apply(&mut pose, x);
+                    let out = solve(&mut ws, &pose);
+                    let force = out.right.force;
+                    if let Some(prev) = last {
+                        let step = (0..3)
+                            .map(|i| (force[i] - prev[i]).abs())
+                            .fold(0.0, f64::max);
+                        largest = largest.max(step);
+                        total += step;
+                    }
+                    last = Some(force);
+                }
+                let what = format!("{model:?} y {y} {name}");
+                assert!(largest < 5e-3 * Q, "{what}: a step of {largest} N");
+                assert!(
+                    total > 10.0,
+                    "{what}: the sweep changes nothing ({total} N)"
+                );
+            }
+        }
+    }
+}
