@@ -1,6 +1,6 @@
 //! One wheelset on straight track: contact search on both wheels, normal contact (multi-Hertzian
 //! or a strip model), creepages from the wheelset kinematics, FASTSIM or FaStrip per patch, and
-//! the forces in track axes (docs/theory.md §7.6–§8.4).
+//! the forces in track axes (docs/theory.md §7.6–§8.5).
 //!
 //! Per wheel (in its side frame, see [`crate::geometry::track`]):
 //! 1. rigid contact search ([`crate::geometry::search`]) gives the gap function, its minima and
@@ -1072,21 +1072,24 @@ fn solve_side(
     out: &mut SideResult,
 ) -> Result<(), WheelsetError> {
     let s = side.sigma;
-    // The contact is solved in the frame of the rail as displaced (docs/theory.md §8.4): there
+    // The contact is solved in the frame of the rail as displaced (docs/theory.md §8.5): there
     // the rail is at its design position and the wheelset carries the opposite displacement.
     // In the side frame (lateral ℓ = σ y towards the field side, z down) the wheelset centre
     // lies at (a, b) = (ℓ − Y_O − σ dy, z − h − dz) from the rail's origin (Y_O its design
-    // lateral, h = wheelRadius the centre's nominal height); turned by −σθ about the origin it is
-    // at (a′, b′), the centre the rail frame sees: lateral Y_O + a′, lowering b′ + h.
+    // lateral, h = wheelRadius the centre's nominal height; with prescribed loads the wheel sits
+    // on its rail, b = −h); turned by −σθ about the origin it is at (a′, b′), the centre the rail
+    // frame sees: lateral Y_O + a′, lowering b′ + h.
     let rail = *input.track.rail(s);
     let theta = s * rail.roll;
     let lift = ctx.settings.setup.wheel_radius;
     let origin = side.geometry.rail().origin_lateral();
     let (sin_t, cos_t) = theta.sin_cos();
+    // The centre's height above the rail's origin beyond h (0 for a wheel on its rail).
+    let above = if load.is_some() { 0.0 } else { rail.dz - z };
     let (lateral, z) = if theta == 0.0 {
         (s * (input.y - rail.dy), z - rail.dz)
     } else {
-        let (a, b) = (s * (input.y - rail.dy) - origin, z - lift - rail.dz);
+        let (a, b) = (s * (input.y - rail.dy) - origin, -lift - above);
         (origin + a * cos_t + b * sin_t, lift - a * sin_t + b * cos_t)
     };
     let pose = SidePose {
@@ -1102,7 +1105,7 @@ fn solve_side(
     side.rail = RailFrame {
         velocity: Vector3::new(0.0, rail.vy, rail.vz),
         roll_rate: rail.roll_rate,
-        origin: Vector3::new(0.0, s * origin + rail.dy - input.y, rail.dz + lift),
+        origin: Vector3::new(0.0, s * origin + rail.dy - input.y, lift + above),
     };
     side.geometry
         .search(&pose)
