@@ -41,8 +41,6 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
-from fmpy import read_model_description
-from fmpy.fmi2 import FMU2Slave
 
 HERE = Path(__file__).resolve().parent
 
@@ -179,26 +177,11 @@ OUT = [f"{s}.{q}" for q in ("Fy", "Mz", "My", "Fx", "YQ", "Tgamma") for s in SID
 ]
 
 
-class Element:
-    """A WheelRailContact instance stepped with any inputs by name."""
+class Element(wh.Contact):
+    """examples/wheelset_hunting.py's instance, stepped with any inputs by name."""
 
     def __init__(self, host, **parameters) -> None:
-        self.md = read_model_description(str(host.path))
-        self.vars = {v.name: v for v in self.md.modelVariables}
-        self.fmu = FMU2Slave(guid=self.md.guid, unzipDirectory=host.unzipdir,
-                             modelIdentifier=self.md.coSimulation.modelIdentifier,
-                             instanceName="track")
-        self.fmu.instantiate()
-        self.fmu.setupExperiment(startTime=0.0)
-        for name, value in parameters.items():
-            v = self.vars[name]
-            if v.type == "Integer":
-                self.fmu.setInteger([v.valueReference], [int(value)])
-            else:
-                self.fmu.setReal([v.valueReference], [float(value)])
-        self.fmu.enterInitializationMode()
-        self.fmu.exitInitializationMode()
-        self.time = 0.0
+        super().__init__(host.path, host.unzipdir, **parameters)
         self._out = [self.vars[n].valueReference for n in OUT]
 
     def step(self, h: float, inputs: dict[str, float]) -> dict[str, float]:
@@ -206,10 +189,6 @@ class Element:
         self.fmu.doStep(currentCommunicationPoint=self.time, communicationStepSize=h)
         self.time += h
         return dict(zip(OUT, self.fmu.getReal(self._out)))
-
-    def close(self) -> None:
-        self.fmu.terminate()
-        self.fmu.freeInstance()
 
 
 def run(host, ws, suspension: Suspension, speed: float, length: float, curve: Curve | None = None,

@@ -24,6 +24,7 @@ static variable, so two routers would steal each other's messages) and the ``Sla
 
 from __future__ import annotations
 
+import importlib.util
 import itertools
 import json
 import math
@@ -189,6 +190,17 @@ wrc_fmu_path, wrc_model_description, wrc_unzipdir, wrc_shared_library = packed_f
 
 # ---------------------------------------------------------------------------------------------
 # The benchmark files and FMUs with them in resources/
+
+
+def example_module(name: str, fmu_dir: Path):
+    """examples/<name>.py imported as the module ``name``, its FMUs taken from ``fmu_dir``
+    (``RAILCONTACT_FMU_DIR``, unless already set)."""
+    os.environ.setdefault("RAILCONTACT_FMU_DIR", str(fmu_dir))
+    spec = importlib.util.spec_from_file_location(name, REPO_ROOT / "examples" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module  # dataclasses look their module up
+    spec.loader.exec_module(module)
+    return module
 
 
 def data_file(relative: str) -> Path:

@@ -4,25 +4,17 @@ WheelRailContact FMU through FMPy. docs/vehicle.md ("Real track") gives the full
 
 from __future__ import annotations
 
-import importlib.util
-import os
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "track_runs.py"
+from conftest import example_module
 
 
 @pytest.fixture(scope="module")
 def example(wrc_fmu_path: Path):
-    os.environ.setdefault("RAILCONTACT_FMU_DIR", str(wrc_fmu_path.parent))
-    spec = importlib.util.spec_from_file_location("track_runs", EXAMPLE)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # dataclasses look their module up
-    spec.loader.exec_module(module)
-    return module
+    return example_module("track_runs", wrc_fmu_path.parent)
 
 
 @pytest.fixture(scope="module")

@@ -4,25 +4,17 @@ example's own acceptance checks; docs/vehicle.md gives the full form's results."
 
 from __future__ import annotations
 
-import importlib.util
 import math
-import os
-import sys
 from pathlib import Path
 
 import pytest
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "wheelset_hunting.py"
+from conftest import example_module
 
 
 @pytest.fixture(scope="module")
 def example(wrc_fmu_path: Path):
-    os.environ.setdefault("RAILCONTACT_FMU_DIR", str(wrc_fmu_path.parent))
-    spec = importlib.util.spec_from_file_location("wheelset_hunting", EXAMPLE)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # dataclasses look their module up
-    spec.loader.exec_module(module)
-    return module
+    return example_module("wheelset_hunting", wrc_fmu_path.parent)
 
 
 def test_short_form_of_the_closed_loop_example(example) -> None:
