@@ -9,9 +9,9 @@
 //! v_R = (0, vy_R, vz_R) + θ̇_R e_x × (P − O_R) (its origin O_R's velocity and roll rate). The
 //! creepages of the wheel relative to the rail at a contact point with contact axes
 //! (e_x, e_y, e_z) are ξ = (v − v_R)·e_x/V, η = (v − v_R)·e_y/V, φ = Ω·e_z/V (the rail's roll
-//! rate has no component along e_z), with V = max(|vx|, [`V_MIN`]). Contact axes at contact angle γ on side σ (+1 right, −1 left):
-//! e_x = (1, 0, 0), e_y = (0, cos γ, −σ sin γ), e_z = (0, σ sin γ, cos γ) (from the wheel into
-//! the rail).
+//! rate has no component along e_z), with V = max(|vx|, [`V_MIN`]). Contact axes at contact
+//! angle γ on side σ (+1 right, −1 left): e_x = (1, 0, 0), e_y = (0, cos γ, −σ sin γ),
+//! e_z = (0, σ sin γ, cos γ) (from the wheel into the rail).
 
 use nalgebra::Vector3;
 
