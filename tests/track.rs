@@ -210,6 +210,14 @@ fn rail(dy: f64) -> RailInput {
     }
 }
 
+/// Straight track whose right rail moves as `rail`.
+fn on_right(rail: RailInput) -> TrackInput {
+    TrackInput {
+        right: rail,
+        ..TrackInput::default()
+    }
+}
+
 fn assert_same_side(a: &SideResult, b: &SideResult, what: &str) {
     assert_eq!(a.n_patches, b.n_patches, "{what}");
     for (k, p) in loaded(a) {
@@ -308,13 +316,10 @@ fn a_rail_displacement_is_the_opposite_wheelset_displacement_on_its_side() {
 fn rail_velocities_enter_the_creepages_as_relative_velocities() {
     let mut ws = wheelset(NormalModel::Hertz, false);
     for y in [0.0, 0.006] {
-        let rail_moving = TrackInput {
-            right: RailInput {
-                vy: 0.01,
-                ..RailInput::default()
-            },
-            ..TrackInput::default()
-        };
+        let rail_moving = on_right(RailInput {
+            vy: 0.01,
+            ..RailInput::default()
+        });
         let a = solve(&mut ws, &input(y, 0.0, rail_moving));
         let mut wheelset_moving = input(y, 0.0, TrackInput::default());
         wheelset_moving.creepages = kinematic(-0.01, OMEGA);
@@ -322,21 +327,15 @@ fn rail_velocities_enter_the_creepages_as_relative_velocities() {
         assert_same_side(&a.right, &b.right, &format!("vy at y {y}"));
         let base = solve(&mut ws, &input(y, 0.0, TrackInput::default()));
         let (w, rate) = (0.01, 0.05);
-        let vertical = TrackInput {
-            right: RailInput {
-                vz: w,
-                ..RailInput::default()
-            },
-            ..TrackInput::default()
-        };
+        let vertical = on_right(RailInput {
+            vz: w,
+            ..RailInput::default()
+        });
         let c = solve(&mut ws, &input(y, 0.0, vertical));
-        let rolling = TrackInput {
-            right: RailInput {
-                roll_rate: rate,
-                ..RailInput::default()
-            },
-            ..TrackInput::default()
-        };
+        let rolling = on_right(RailInput {
+            roll_rate: rate,
+            ..RailInput::default()
+        });
         let d = solve(&mut ws, &input(y, 0.0, rolling));
         let mounted = ws.geometry(true).rail().profile().clone();
         for (k, p) in loaded(&base.right) {

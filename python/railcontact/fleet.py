@@ -117,8 +117,8 @@ def evaluate_pair(wheel: str, rail: str, study: Study) -> tuple[dict[str, Any], 
     empty: dict[str, list] = {"wheel": [], "rail": [], "y": [], **{c: [] for c in MAP_COLUMNS}}
     case = study.pair_case(wheel, rail)
     try:
-        read_profile(wheel, "wheel").check()
-        read_profile(rail, "rail").check()
+        # The case's profiles are read and checked as the element reads them: a refused file
+        # raises here with its message.
         con = conicity(case, amplitudes=study.amplitudes)
         loaded = solve_batch(case, {"y": np.asarray(study.shifts, dtype=np.float64)}, independent=True)
     except (RailcontactError, DiscardError) as e:
@@ -198,8 +198,8 @@ def run(
     check(study)
     if chunk < 1:
         raise RailcontactError(f"chunk = {chunk}: needs at least 1 pair per task")
-    results: list[list[tuple[dict, dict]]] = [None] * math.ceil(len(todo) / chunk)  # type: ignore[list-item]
     groups = _chunks(todo, chunk)
+    results: list[list[tuple[dict, dict]]] = [[] for _ in groups]
     with _progress(len(todo), progress) as bar:
         if serial:
             for i, g in enumerate(groups):

@@ -727,7 +727,9 @@ impl Model for WheelRailContact {
     /// Steps scaled to each input's physics: a creepage change of [`CREEPAGE_STEP`] for the
     /// velocities (vx, vy: × V; yawRate: × V / 1 m, the lever of a wheel; omega: × V / r₀) and the
     /// prescribed creepages, [`SPIN_STEP`] for the spin, [`POSE_STEP`] for y, yaw and roll,
-    /// [`HEIGHT_STEP`] for z, [`LOAD_STEP`] of the loads; V = max(|vx|, 0.01 m/s).
+    /// [`HEIGHT_STEP`] for z, [`LOAD_STEP`] of the loads; the rails' displacements and velocities
+    /// as the wheelset's own, the curvature and a rail's roll rate over [`CURVATURE_LEVER`];
+    /// V = max(|vx|, 0.01 m/s).
     fn difference_step(&self, values: &Values, v: &VarInfo) -> f64 {
         let speed = values.real(var::vx).abs().max(V_MIN);
         match RealVar(v.slot) {
@@ -739,21 +741,21 @@ impl Model for WheelRailContact {
             var::omega => CREEPAGE_STEP * speed / values.real(var::wheelRadius),
             var::xi | var::eta => CREEPAGE_STEP,
             var::phi => SPIN_STEP,
-            rail if RAIL_VARS.iter().any(|r| r[..3].contains(&rail)) => {
-                if rail == var::left_rail_dz || rail == var::right_rail_dz {
-                    HEIGHT_STEP
-                } else {
-                    POSE_STEP
-                }
-            }
-            rail if RAIL_VARS.iter().any(|r| r[3..].contains(&rail)) => {
-                if rail == var::left_rail_rollRate || rail == var::right_rail_rollRate {
-                    CREEPAGE_STEP * speed / CURVATURE_LEVER
-                } else {
-                    CREEPAGE_STEP * speed
-                }
-            }
-            _ => crate::fmi::derivative::default_step(values, v),
+            rail => match RAIL_VARS
+                .iter()
+                .find_map(|r| r.iter().position(|&x| x == rail))
+            {
+                // dy, dz, roll, vy, vz, rollRate, as the wheelset's own pose and velocities.
+                Some(field) => [
+                    POSE_STEP,
+                    HEIGHT_STEP,
+                    POSE_STEP,
+                    CREEPAGE_STEP * speed,
+                    CREEPAGE_STEP * speed,
+                    CREEPAGE_STEP * speed / CURVATURE_LEVER,
+                ][field],
+                None => crate::fmi::derivative::default_step(values, v),
+            },
         }
     }
 
