@@ -155,6 +155,15 @@ impl NormalModel {
         Self::ALL.iter().copied().find(|m| m.name() == name)
     }
 
+    /// Whether a strip patch of this model takes its reference point at the weighted centre of
+    /// the interpenetration (CONTACT's contact reference point: ANALYN and the coupled strips,
+    /// whose pressure lies near the exact one's) or at its own force centroid (Linder,
+    /// Kik–Piotrowski and STRIPES, whose published pressures may sit a few millimetres away from
+    /// it: their forces and creepages follow their own pressure). docs/theory.md §7.9.
+    pub fn reference_at_interpenetration(self) -> bool {
+        matches!(self, NormalModel::Analyn | NormalModel::CoupledStrips)
+    }
+
     /// A solver for a strip model; `None` for Hertz (no strips).
     pub fn strip_model(self) -> Option<Box<dyn StripModel + Send>> {
         Some(match self {

@@ -185,11 +185,14 @@ impl StripPatch {
 
     /// Where and along which normal the last solution's normal force acts, with the wheel
     /// lowered by `dz` [m] (docs/conventions.md, "Reference point"): the reference point at the
-    /// force centroid of the strips (where the load is); on a planar patch the force Σ N_j along
-    /// the normal of the plane of Kalker's planar theory, inclined by the interpenetration's
-    /// weighted mean inclination ([`StripPatch::interpenetration_centre`]); on a non-planar one
-    /// each strip's N_j along its own normal, whose resultant gives the angle and the force.
-    pub fn frame(&self, dz: f64, planar: bool) -> PatchFrame {
+    /// weighted centre of the interpenetration ([`StripPatch::interpenetration_centre`], CONTACT's
+    /// contact reference point) where the model takes it there
+    /// ([`NormalModel::reference_at_interpenetration`]), else (and where nothing interpenetrates)
+    /// at the force centroid of the strips; on a planar patch (`settings.planar`) the force
+    /// Σ N_j along the normal of the plane of Kalker's planar theory, inclined by the
+    /// interpenetration's weighted mean inclination; on a non-planar one each strip's N_j along
+    /// its own normal, whose resultant gives the angle and the force.
+    pub fn frame(&self, dz: f64, settings: &StripSettings) -> PatchFrame {
         let n = self.geom.n.min(self.sol.n);
         let (mut normal_force, mut moment) = (0.0, 0.0);
         for j in 0..n {
@@ -197,16 +200,14 @@ impl StripPatch {
             normal_force += force;
             moment += force * self.geom.s[j];
         }
-        let s = if normal_force > 0.0 {
-            moment / normal_force
-        } else {
-            0.0
+        let centre = self.interpenetration_centre(dz);
+        let s = match centre {
+            Some((s, _)) if settings.model.reference_at_interpenetration() => s,
+            _ if normal_force > 0.0 => moment / normal_force,
+            _ => 0.0,
         };
-        let plane_angle = || {
-            self.interpenetration_centre(dz)
-                .map_or(self.plane.gamma_rail, |(_, angle)| angle)
-        };
-        if planar {
+        let plane_angle = || centre.map_or(self.plane.gamma_rail, |(_, angle)| angle);
+        if settings.planar {
             return PatchFrame {
                 s,
                 angle: plane_angle(),
@@ -338,7 +339,7 @@ impl StripSide {
             .map(|p| {
                 let n = p.solve(dz, &settings.params, table);
                 if n > 0.0 {
-                    p.weight * p.frame(dz, settings.planar).vertical()
+                    p.weight * p.frame(dz, settings).vertical()
                 } else {
                     0.0
                 }
@@ -486,8 +487,7 @@ impl StripSide {
 }
 
 /// Writes the outputs of the strip patches of `side` (solved at lowering `dz`): patch figures
-/// from the strips, reference point at the patch's force centroid (interpolated between strips)
-/// and normal force along its [`StripPatch::frame`],
+/// from the strips, reference point and normal force's direction from its [`StripPatch::frame`],
 /// tangential forces by the strip solvers of [`crate::tangential::strip_fastsim`] (planar or non-planar,
 /// flexibilities per [`TangentialModel`]; or a recorded solution scaled, as `tangential` says).
 /// Returns the creep forces' upward component on the wheel: its upward force less that of the
@@ -554,7 +554,7 @@ pub(super) fn strip_patch_result(
     (slot, key): (usize, usize),
     tangential: &mut Tangential,
 ) -> Result<(PatchResult, Vector3<f64>, f64), InputError> {
-    let frame = patch.frame(dz, ctx.strips.planar);
+    let frame = patch.frame(dz, &ctx.strips);
     let at = |v: &[f64]| patch.interpolate(v, frame.s);
     let reference = ContactPoint {
         lateral: at(&patch.points.lateral),

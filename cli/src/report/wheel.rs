@@ -280,7 +280,10 @@ fn lateral_tables(study: &Study, exact: &[ExactRow]) -> Result<String, Failure> 
          curvature changes under it (+1 and +2 mm: the rail's radius drops from 300 to 80 mm \
          under the patch). ANALYN's non-planar lateral force follows its own pressure, whose \
          load centre lies up to 1.1 mm gauge-side of the exact one at +1 mm (its local reduction \
-         of the approach cuts the flat field side of the patch).\n"
+         of the approach cuts the flat field side of the patch). ANALYN and the coupled strips \
+         take their reference point where the exact solution does (the interpenetration's \
+         weighted centre), Linder, Kik–Piotrowski and STRIPES at the force centroid of their \
+         own pressure (docs/conventions.md, \"Reference point\").\n"
     );
     Ok(md)
 }
