@@ -228,6 +228,22 @@ impl StripPatch {
         }
     }
 
+    /// The upward part of the last solution's normal forces with the wheel lowered by `dz` [m]
+    /// ([`PatchFrame::vertical`] of [`StripPatch::frame`], without its reference point): on a
+    /// planar patch Σ N_j cos γ of the plane's angle, on a non-planar one Σ N_j cos γ_j [N].
+    pub fn vertical(&self, dz: f64, planar: bool) -> f64 {
+        if planar {
+            let n = self.geom.n.min(self.sol.n);
+            let normal_force: f64 = self.sol.force[..n].iter().map(|f| f.max(0.0)).sum();
+            let angle = self
+                .interpenetration_centre(dz)
+                .map_or(self.plane.gamma_rail, |(_, angle)| angle);
+            normal_force * angle.cos()
+        } else {
+            self.normal_resultant().1
+        }
+    }
+
     /// Linear interpolation of a per-strip quantity at in-plane coordinate `s`.
     pub fn interpolate(&self, values: &[f64], s: f64) -> f64 {
         self.interpolate_by(s, |j| values[j])
@@ -327,7 +343,7 @@ impl StripSide {
     }
 
     /// Vertical force of the rail on the wheel lowered by `dz` (upwards positive) [N]: each
-    /// patch's normal force along its [`StripPatch::frame`] (`planar` or not).
+    /// patch's normal force along its [`StripPatch::frame`] (`planar` or not), [`StripPatch::vertical`].
     fn vertical_force(
         &mut self,
         dz: f64,
@@ -339,7 +355,7 @@ impl StripSide {
             .map(|p| {
                 let n = p.solve(dz, &settings.params, table);
                 if n > 0.0 {
-                    p.weight * p.frame(dz, settings).vertical()
+                    p.weight * p.vertical(dz, settings.planar)
                 } else {
                     0.0
                 }
