@@ -44,7 +44,8 @@ pub enum TangentialModel {
     EquivalentEllipse,
     /// 3: FaStrip on the equivalent ellipse.
     Fastrip,
-    /// 4: strip-wise local Hertz ellipses (STRIPES's).
+    /// 4: strip-wise local ellipses: each strip's own half-length with the patch's lateral
+    /// semi-axis (its equivalent ellipse's).
     LocalEllipses,
     /// 5: FaStrip with strip-wise creep coefficients from the half-space.
     FastripCoupled,
@@ -89,7 +90,7 @@ impl TangentialModel {
             TangentialModel::EquivalentEllipse
             | TangentialModel::Fastrip
             | TangentialModel::FastripCoupled => FlexibilitySource::EquivalentEllipse,
-            TangentialModel::LocalEllipses => FlexibilitySource::LocalHertz,
+            TangentialModel::LocalEllipses => FlexibilitySource::StripLength,
             TangentialModel::ModelDefault => match normal {
                 NormalModel::Linder => FlexibilitySource::ModelLocal,
                 NormalModel::StripesB | NormalModel::StripesAB => FlexibilitySource::LocalHertz,
@@ -112,6 +113,9 @@ pub enum FlexibilitySource {
     ModelLocal,
     /// The strip's local Hertz ellipse.
     LocalHertz,
+    /// The strip's own half-length x_l,j with the lateral semi-axis of the patch's equivalent
+    /// ellipse (as Linder's local ellipses share one lateral semi-axis).
+    StripLength,
 }
 
 /// The equivalent ellipse of a patch (docs/theory.md §4.7): semi-axes with the patch's area S and
@@ -181,6 +185,10 @@ pub fn strip_flexibilities(
         FlexibilitySource::ModelLocal if sol.local_axes[j].0 > 0.0 => {
             let (a, b) = sol.local_axes[j];
             (a, b, creep_coefficients(a, b, e.nu)?)
+        }
+        FlexibilitySource::StripLength => {
+            let a = sol.half_length[j];
+            (a, e.b, creep_coefficients(a, e.b, e.nu)?)
         }
         FlexibilitySource::ModelLocal | FlexibilitySource::LocalHertz => {
             let shape = table.lookup(geom.curv_a[j], geom.curv_b[j].max(b_floor))?;
