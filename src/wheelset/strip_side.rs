@@ -200,13 +200,17 @@ impl StripPatch {
             normal_force += force;
             moment += force * self.geom.s[j];
         }
-        let centre = self.interpenetration_centre(dz);
+        // The interpenetration's centre where the reference point or the plane's angle needs it.
+        let at_centre = settings.model.reference_at_interpenetration();
+        let centre = (at_centre || settings.planar || normal_force <= 0.0)
+            .then(|| self.interpenetration_centre(dz))
+            .flatten();
         let s = match centre {
-            Some((s, _)) if settings.model.reference_at_interpenetration() => s,
+            Some((s, _)) if at_centre => s,
             _ if normal_force > 0.0 => moment / normal_force,
             _ => 0.0,
         };
-        let plane_angle = || centre.map_or(self.plane.gamma_rail, |(_, angle)| angle);
+        let plane_angle = || self.plane_angle(centre);
         if settings.planar {
             return PatchFrame {
                 s,
@@ -235,13 +239,16 @@ impl StripPatch {
         if planar {
             let n = self.geom.n.min(self.sol.n);
             let normal_force: f64 = self.sol.force[..n].iter().map(|f| f.max(0.0)).sum();
-            let angle = self
-                .interpenetration_centre(dz)
-                .map_or(self.plane.gamma_rail, |(_, angle)| angle);
-            normal_force * angle.cos()
+            normal_force * self.plane_angle(self.interpenetration_centre(dz)).cos()
         } else {
             self.normal_resultant().1
         }
+    }
+
+    /// The planar contact angle from the interpenetration's `centre` (its weighted mean
+    /// inclination), the layout plane's where nothing interpenetrates [rad].
+    fn plane_angle(&self, centre: Option<(f64, f64)>) -> f64 {
+        centre.map_or(self.plane.gamma_rail, |(_, angle)| angle)
     }
 
     /// Linear interpolation of a per-strip quantity at in-plane coordinate `s`.
@@ -342,8 +349,8 @@ impl StripSide {
         &self.patches[..self.count]
     }
 
-    /// Vertical force of the rail on the wheel lowered by `dz` (upwards positive) [N]: each
-    /// patch's normal force along its [`StripPatch::frame`] (`planar` or not), [`StripPatch::vertical`].
+    /// Vertical force of the rail on the wheel lowered by `dz` (upwards positive) [N]: the upward
+    /// part of each patch's normal forces, planar or not ([`StripPatch::vertical`]).
     fn vertical_force(
         &mut self,
         dz: f64,
