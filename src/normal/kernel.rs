@@ -14,7 +14,7 @@
 use std::f64::consts::{E, FRAC_PI_2, PI};
 
 use crate::numeric::elliptic::complete_elliptic_from_complementary;
-use crate::numeric::interp::cubic_on_uniform_nodes;
+use crate::numeric::interp::UniformCubic;
 use crate::numeric::quadrature::gauss_legendre;
 
 /// Scale of the model kernel S(y) = 2c asinh(α/|y|): α = (2/e) c makes S's log singularity
@@ -188,10 +188,10 @@ const TABLE_DU: f64 = 0.01;
 /// cell by cell; outside [`TABLE_T_MIN`, `TABLE_T_MAX`] the direct functions are used.
 #[derive(Debug, Clone)]
 pub(crate) struct RemainderTable {
-    /// R̂ at t_k = TABLE_T_MIN e^{k Δu}.
-    remainder: Vec<f64>,
-    /// Ĝ at the same nodes.
-    integral: Vec<f64>,
+    /// R̂ at t_k = TABLE_T_MIN e^{k Δu}, as interval cubics.
+    remainder: UniformCubic,
+    /// Ĝ at the same nodes, as interval cubics.
+    integral: UniformCubic,
 }
 
 impl RemainderTable {
@@ -215,14 +215,14 @@ impl RemainderTable {
             integral.push(integral[k] + TABLE_DU / 24.0 * cell);
         }
         Self {
-            remainder,
-            integral,
+            remainder: UniformCubic::new(&remainder),
+            integral: UniformCubic::new(&integral),
         }
     }
 
     /// Cubic (Lagrange) interpolation of `values` at t ∈ [TABLE_T_MIN, TABLE_T_MAX].
-    fn at(values: &[f64], t: f64) -> f64 {
-        cubic_on_uniform_nodes(values, (t / TABLE_T_MIN).ln() / TABLE_DU)
+    fn at(values: &UniformCubic, t: f64) -> f64 {
+        values.at((t / TABLE_T_MIN).ln() / TABLE_DU)
     }
 
     /// R(c, y) = c R̂(|y|/c) [m] (as [`kernel_remainder`]).
@@ -297,10 +297,12 @@ fn far_field_slope(t: f64) -> f64 {
 /// against the direct J to 1e−9).
 #[derive(Debug, Clone)]
 pub(crate) struct ScaledStripIntegral {
-    /// Ĵ at T_k = SCALED_T_MIN e^{k Δu}.
-    values: Vec<f64>,
-    /// dĴ/d ln T = T_k I(1, T_k) at the same nodes.
-    slopes: Vec<f64>,
+    /// Ĵ at T_k = SCALED_T_MIN e^{k Δu}, as interval cubics.
+    values: UniformCubic,
+    /// dĴ/d ln T = T_k I(1, T_k) at the same nodes, as interval cubics.
+    slopes: UniformCubic,
+    /// Nodes of the tables.
+    nodes: usize,
     /// Ĵ(SCALED_T_MAX) − (π/2) ln SCALED_T_MAX − P(SCALED_T_MAX): the far-field constant.
     far_constant: f64,
     /// For T < SCALED_T_MIN.
@@ -324,8 +326,9 @@ impl ScaledStripIntegral {
         let far_constant =
             values[nodes - 1] - FRAC_PI_2 * t_last.ln() - far_field_polynomial(t_last);
         Self {
-            values,
-            slopes,
+            values: UniformCubic::new(&values),
+            slopes: UniformCubic::new(&slopes),
+            nodes,
             far_constant,
             remainder,
             t_max: t_last,
@@ -339,7 +342,7 @@ impl ScaledStripIntegral {
 
     /// Ĵ(T) from `log_t` = ln T (and T itself, for the ends) [-]; 0 for T ≤ 0 or NaN.
     pub(crate) fn at_log(&self, t: f64, log_t: f64) -> f64 {
-        Self::look_up(
+        self.look_up(
             &self.values,
             t,
             log_t,
@@ -352,7 +355,7 @@ impl ScaledStripIntegral {
     /// cubic interpolation inside the table, the direct function below it, the far-field series
     /// at and beyond its end; 0 for T ≤ 0 or NaN.
     pub(crate) fn slope_at_log(&self, t: f64, log_t: f64) -> f64 {
-        Self::look_up(
+        self.look_up(
             &self.slopes,
             t,
             log_t,
@@ -365,7 +368,8 @@ impl ScaledStripIntegral {
     /// the first node, `beyond(T)` at and past the last, else one cubic interpolation.
     #[inline(always)]
     fn look_up(
-        table: &[f64],
+        &self,
+        table: &UniformCubic,
         t: f64,
         log_t: f64,
         below: impl Fn(f64) -> f64,
@@ -376,10 +380,10 @@ impl ScaledStripIntegral {
             0.0
         } else if x < 0.0 {
             below(t)
-        } else if x >= (table.len() - 1) as f64 {
+        } else if x >= (self.nodes - 1) as f64 {
             beyond(t)
         } else {
-            cubic_on_uniform_nodes(table, x)
+            table.at(x)
         }
     }
 
