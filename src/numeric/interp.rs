@@ -16,7 +16,7 @@ pub fn cubic_lagrange_weights(x: f64) -> [f64; 4] {
 /// ([`cubic_lagrange_weights`]), with the first and last intervals' cubics extrapolated beyond
 /// them. Kept per interval in monomial form, c0 + c1 t + c2 t² + c3 t³ with t = x − k: three
 /// multiply-adds per evaluation instead of the four weights (equal up to rounding, tested).
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct UniformCubic {
     /// Per interval k = 1 … n − 3 (index 0 unused; x below 1 or beyond n − 2 takes the end
     /// intervals').
@@ -29,7 +29,7 @@ impl UniformCubic {
         let n = values.len();
         assert!(n >= 4, "a cubic needs four nodes");
         let mut coeffs = vec![[0.0; 4]; n - 2];
-        for (k, c) in coeffs.iter_mut().enumerate().take(n - 2).skip(1) {
+        for (k, c) in coeffs.iter_mut().enumerate().skip(1) {
             let (v0, v1, v2, v3) = (values[k - 1], values[k], values[k + 1], values[k + 2]);
             // The Lagrange weights of `cubic_lagrange_weights` expanded in powers of t.
             *c = [
