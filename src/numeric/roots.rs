@@ -21,12 +21,28 @@ pub struct Illinois {
     pub pos: (f64, f64),
     /// +1 if the last update replaced `pos`, −1 if it replaced `neg`, 0 before any.
     last: i8,
+    /// The residuals of `neg` and `pos` as evaluated (before any halving).
+    evaluated: (f64, f64),
 }
 
 impl Illinois {
     /// The bracket between `neg` (f < 0) and `pos` (f ≥ 0).
     pub fn new(neg: (f64, f64), pos: (f64, f64)) -> Self {
-        Self { neg, pos, last: 0 }
+        Self {
+            neg,
+            pos,
+            last: 0,
+            evaluated: (neg.1, pos.1),
+        }
+    }
+
+    /// The ends `neg` and `pos` with their residuals as evaluated: the kept end's residual in
+    /// `neg`/`pos` is halved by the updates and is no measure of how close that end is.
+    pub fn evaluated_ends(&self) -> ((f64, f64), (f64, f64)) {
+        (
+            (self.neg.0, self.evaluated.0),
+            (self.pos.0, self.evaluated.1),
+        )
     }
 
     /// The regula-falsi point of the bracket with the ends' positions mapped by `coordinate`
@@ -62,12 +78,14 @@ impl Illinois {
     pub fn update(&mut self, x: f64, f: f64) {
         if f < 0.0 {
             self.neg = (x, f);
+            self.evaluated.0 = f;
             if self.last < 0 {
                 self.pos.1 *= 0.5;
             }
             self.last = -1;
         } else {
             self.pos = (x, f);
+            self.evaluated.1 = f;
             if self.last > 0 {
                 self.neg.1 *= 0.5;
             }
@@ -128,6 +146,26 @@ mod tests {
             assert!(steps < 30, "too slow: {steps} steps, x = {x}");
         }
         assert!(bracket.neg.1 < 0.0 && bracket.pos.1 >= 0.0);
+    }
+
+    #[test]
+    fn evaluated_ends_keep_the_residuals_the_halving_scales() {
+        // A step at x = 1 from −0.5 to +0.2: the bracket closes on the step, and the end kept
+        // while the other moves has its residual halved each time — not its value.
+        let f = |x: f64| if x < 1.0 { -0.5 } else { 0.2 };
+        let mut bracket = Illinois::new((0.0, f(0.0)), (3.0, f(3.0)));
+        let mut halved = 0;
+        for _ in 0..60 {
+            let x = bracket.inside_or_midpoint(bracket.secant());
+            bracket.update(x, f(x));
+            let ((x_neg, f_neg), (x_pos, f_pos)) = bracket.evaluated_ends();
+            assert_eq!((f_neg, f_pos), (f(x_neg), f(x_pos)), "{bracket:?}");
+            if bracket.neg.1 != f_neg || bracket.pos.1 != f_pos {
+                halved += 1;
+            }
+        }
+        assert!(halved > 0);
+        assert!(bracket.neg.0 < 1.0 && bracket.pos.0 >= 1.0 && bracket.width() < 1e-12);
     }
 
     #[test]

@@ -268,7 +268,8 @@ pub fn balance<E>(
         }
         bracket.update(mid, f_mid);
     }
-    let ((lo, f_lo), (hi, f_hi)) = (bracket.neg, bracket.pos);
+    // The nearer end by the residuals as evaluated (Illinois halves the one it keeps).
+    let ((lo, f_lo), (hi, f_hi)) = bracket.evaluated_ends();
     let (best, f_best) = if f_lo.abs() < f_hi.abs() {
         (lo, f_lo)
     } else {
@@ -664,28 +665,35 @@ mod tests {
 
     #[test]
     fn a_jump_across_the_load_gives_the_nearer_bracket_end() {
-        // F jumps from 0.9 load to 1.2 load at dz = 1e−4: no exact root; the end with the
-        // smaller residual (0.1 load below the jump) is returned.
+        // F jumps at dz = 1e−4 (two regions merging): from 0.9 to 1.2 load the end below the
+        // jump is nearer (residual −0.1 load), from 0.5 to 1.2 the end above it (+0.2 load). The
+        // bracket closes on the jump while the Illinois halving scales the kept end's residual
+        // far below both: the ends must be compared by their residuals as evaluated, and the
+        // returned residual is the force's there.
         let load = 1e4;
-        let b = balance(
-            0.0,
-            start(1e-5),
-            load,
-            LOAD_TOLERANCE,
-            60,
-            ForceLaw::General,
-            |dz| {
-                Ok::<_, ()>(
-                    if dz < 1e-4 {
-                        0.9 * load * dz / 1e-4
-                    } else {
-                        1.2 * load
-                    } - load,
-                )
-            },
-        )
-        .unwrap();
-        assert!((b.lowering - 1e-4).abs() < 1e-12, "{b:?}");
+        for (below, above, nearer) in [(0.9, 1.2, -0.1), (0.5, 1.2, 0.2)] {
+            let residual = |dz: f64| {
+                let force = if dz < 1e-4 {
+                    below * load * dz / 1e-4
+                } else {
+                    above * load
+                };
+                force - load
+            };
+            let b = balance(
+                0.0,
+                start(1e-5),
+                load,
+                LOAD_TOLERANCE,
+                60,
+                ForceLaw::General,
+                |dz| Ok::<_, ()>(residual(dz)),
+            )
+            .unwrap();
+            assert!((b.lowering - 1e-4).abs() < 1e-12, "{b:?}");
+            assert_eq!(b.residual, residual(b.lowering), "{b:?}");
+            assert!((b.residual - nearer * load).abs() < 1e-6 * load, "{b:?}");
+        }
     }
 
     #[test]
