@@ -361,3 +361,67 @@ fn yaw_and_roll_sweeps_have_no_force_jump() {
         }
     }
 }
+
+/// The multi-Hertzian wheel's force is continuous in the lowering where a second patch enters
+/// contact (the load balance needs it: a jump across the load leaves the wheel off its load by
+/// the jump). A pose of the soak's random walk (y = 4.89 mm, the flange root about to touch)
+/// with the wheelset's height prescribed: the lowering is stepped by 0.1 nm through the flange
+/// root's first touch, where its patch must start from nothing — a Hertz patch carries
+/// F ∝ δ^{3/2}, 2e−4 N at δ = 0.1 nm on this root, and the first step that shows it is checked
+/// against 0.01 N (before the patch's depth was measured from the same gap interpolant its
+/// moments integrate, it entered at 0.73 N).
+#[test]
+fn a_hertz_patch_enters_contact_from_nothing() {
+    let mut wheelset = builtin_wheelset_with(|s| s.normal_model = NormalModel::Hertz);
+    let mut input = WheelsetInput {
+        y: 4.892_297_120_661_3e-3,
+        yaw: 5.831_694_363_566_9e-4,
+        roll: 6.204_511_599_834_1e-4,
+        vertical: Vertical::Loads {
+            left: 30_384.6,
+            right: 63_754.4,
+        },
+        creepages: Creepages::Kinematic {
+            vx: 22.95,
+            vy: 0.0145,
+            yaw_rate: -0.0494,
+            omega: 49.67,
+        },
+        track: Default::default(),
+    };
+    let mut out = WheelsetResult::default();
+    wheelset.solve(&input, &mut out).unwrap();
+    let z_loaded = out.right.z;
+    let root_force = |out: &WheelsetResult| -> f64 {
+        out.right.groups[..out.right.n_groups]
+            .iter()
+            .filter(|g| g.contact_angle > 0.2)
+            .map(|g| g.fn_)
+            .sum()
+    };
+    // Find the first touch of the flange root within 0.2 µm of the loaded height.
+    let (mut lo, mut hi) = (z_loaded - 2e-7, z_loaded + 2e-7);
+    input.vertical = Vertical::Position { z: lo };
+    wheelset.solve(&input, &mut out).unwrap();
+    assert_eq!(root_force(&out), 0.0, "the root touches already at {lo}");
+    input.vertical = Vertical::Position { z: hi };
+    wheelset.solve(&input, &mut out).unwrap();
+    assert!(root_force(&out) > 0.0, "the root does not touch at {hi}");
+    while hi - lo > 1e-10 {
+        let mid = 0.5 * (lo + hi);
+        input.vertical = Vertical::Position { z: mid };
+        wheelset.solve(&input, &mut out).unwrap();
+        if root_force(&out) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    input.vertical = Vertical::Position { z: hi };
+    wheelset.solve(&input, &mut out).unwrap();
+    let entering = root_force(&out);
+    assert!(
+        entering < 0.01,
+        "the flange root enters with {entering} N at z = {hi}"
+    );
+}

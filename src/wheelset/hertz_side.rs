@@ -37,7 +37,10 @@ pub(super) const VIRTUAL_FRACTION: f64 = 0.8;
 /// The groups are those at `merge_level` (fixed for the wheel's load iteration, so that the
 /// vertical force increases with dz: [`merge_level`]); a group whose minima all lie above dz
 /// carries nothing.
-/// * depth δ_v = dz − g_min (vertical), g_min the group's deepest gap;
+/// * depth δ_v = dz − g_min (vertical), g_min the group's deepest gap, no deeper than the
+///   lowest point of the gap's interpolant over the group (which the moments below integrate:
+///   a refined minimum can lie ~0.1 µm below it on a narrow flange root), so that a patch
+///   enters contact from nothing;
 /// * the interpenetration above the fraction ε = [`VIRTUAL_FRACTION`] of that depth, d(w) =
 ///   max(0, g_min + ε δ_v − gap(w)) ([`crate::geometry::search::WheelOnRail::depth_moments`]):
 ///   its d-weighted mean lateral is the patch's reference point — the force centroid of a
@@ -143,15 +146,18 @@ pub(super) fn group_ellipse(
     dz: f64,
     b_floor: f64,
 ) -> Result<Option<(ContactPoint, PatchResult)>, InputError> {
+    let (gauge, field) = group_bounds(candidates, ridges, group, scan);
+    // The deepest gap, and no deeper than the interpolant the moments below integrate: the
+    // patch starts from nothing as the lowering reaches it.
     let deepest = candidates[group.first..=group.last]
         .iter()
         .map(|c| c.gap)
-        .fold(f64::INFINITY, f64::min);
+        .fold(f64::INFINITY, f64::min)
+        .max(geometry.lowest_between(gauge, field));
     let depth = dz - deepest;
     if depth.is_nan() || depth <= 0.0 {
         return Ok(None);
     }
-    let (gauge, field) = group_bounds(candidates, ridges, group, scan);
     let virtual_depth = VIRTUAL_FRACTION * depth;
     let Some(moments) = geometry.depth_moments(gauge, field, deepest + virtual_depth) else {
         return Ok(None);
