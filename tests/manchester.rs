@@ -531,6 +531,62 @@ fn roll_sign_matches_contact() {
     assert!(d.poses.iter().all(|p| p.roll <= 0.0));
 }
 
+/// CONTACT's kinematic constants of every state in `name`: its reference speed VELOC [mm/s] and
+/// spin creepage CPHI [1/mm] (of the rail relative to the wheel).
+fn read_kinematics(name: &str) -> Vec<(f64, f64)> {
+    let path = data_file(&format!("reference/manchester/{name}"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let rows: Vec<(f64, f64)> = lines
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.contains("CHI") && l.contains("VELOC") && l.contains("CPHI"))
+        .map(|(i, _)| {
+            let v: Vec<f64> = lines[i + 1]
+                .split_whitespace()
+                .map(|x| x.trim_end_matches('.').parse().unwrap())
+                .collect();
+            (v[2], v[5])
+        })
+        .collect();
+    assert_eq!(rows.len(), 21, "{}: expected 21 states", path.display());
+    rows
+}
+
+/// The spin follows the wheel's axle, rolled with the wheelset: on the left wheel, which stays on
+/// its tread while the right one climbs the flange and the wheelset rolls by up to 11 mrad, the
+/// spin's angular velocity φV is CONTACT's (CONTACT normalises by its rolling speed VELOC, and its
+/// creepages are the rail's relative to the wheel: φV = −CPHI·VELOC). The bound: ω (|Δγ| + 0.2
+/// mrad), the part our contact angle's difference from CONTACT's explains (the spin is
+/// ω sin(γ − θ) there) and a margin of 0.2 mrad; an axle that ignored the roll misses by ω|θ|,
+/// up to 0.05 rad/s at 10 mm (5–25 times the bound on the flange states).
+#[test]
+fn spin_follows_the_rolled_axle() {
+    let d = data();
+    let contact = read_kinematics("mbench_a22_left.ref_out");
+    for ((pose, out), (r, &(veloc, cphi))) in d
+        .poses
+        .iter()
+        .zip(&d.plus)
+        .zip(d.left_ref.iter().zip(&contact))
+    {
+        let p = dominant(&out.left);
+        let omega = -pose.vpitch;
+        let ours = p.creepage.phi * VX;
+        let theirs = -cphi * MM * veloc / MM;
+        let bound = omega * ((p.contact_angle - r.angle).abs() + 2e-4);
+        eprintln!(
+            "y {:4.1} mm roll {:+.5}: φV {ours:+.5} rad/s, CONTACT {theirs:+.5}, bound {bound:.5}",
+            pose.y_mm, pose.roll
+        );
+        assert!(
+            (ours - theirs).abs() <= bound,
+            "y = {} mm: φV = {ours} rad/s against CONTACT's {theirs} (bound {bound})",
+            pose.y_mm
+        );
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Properties
 

@@ -4,8 +4,9 @@
 //! line at the wheelset, so that on a curve of curvature κ they turn at vx κ about z
 //! (docs/theory.md §8.1). The wheelset centre C, at lateral y, moves with
 //! v_C = (vx (1 − κ y), vy, 0); the wheelset turns with Ω = (ψ̇ + vx κ) e_z − ω e_axle, the axle
-//! direction e_axle = (−sin ψ, cos ψ, 0) yawed by ψ. A material point P of the wheel then moves
-//! with v = v_C + Ω × (P − C); the rail's material point there with
+//! direction e_axle = (−sin ψ, cos ψ cos θ, cos ψ sin θ) yawed by ψ and rolled by θ. A material
+//! point P of the wheel (its lever from C turned by the roll) then moves with
+//! v = v_C + Ω × (P − C); the rail's material point there with
 //! v_R = (0, vy_R, vz_R) + θ̇_R e_x × (P − O_R) (its origin O_R's velocity and roll rate). The
 //! creepages of the wheel relative to the rail at a contact point with contact axes
 //! (e_x, e_y, e_z) are ξ = (v − v_R)·e_x/V, η = (v − v_R)·e_y/V, φ = Ω·e_z/V (the rail's roll
@@ -77,13 +78,27 @@ pub(super) fn creepages_with(
             omega,
         } => {
             let speed = vx.abs().max(V_MIN);
-            // P − C in track axes: the side's lateral coordinate mirrored on the left wheel.
-            let arm = Vector3::new(point.x, sigma * point.y, point.z);
+            // P − C in track axes: the side's lateral coordinate mirrored on the left wheel, the
+            // wheelset's roll θ turning it about e_x (θ > 0 lowers the right wheel).
+            let (sin_roll, cos_roll) = input.roll.sin_cos();
+            let (lateral, depth) = (sigma * point.y, point.z);
+            let arm = Vector3::new(
+                point.x,
+                lateral * cos_roll - depth * sin_roll,
+                lateral * sin_roll + depth * cos_roll,
+            );
+            // The rail's lever from its origin, which sits `wheelRadius` below the unrolled centre
+            // (docs/theory.md §8.1): the point unrolled.
+            let rail_arm = Vector3::new(point.x, lateral, depth);
             let kappa = input.track.curvature;
-            let angular_velocity =
-                Vector3::new(omega * sin_yaw, -omega * cos_yaw, yaw_rate + vx * kappa);
+            // ω about the yawed and rolled axle e_axle = (−sin ψ, cos ψ cos θ, cos ψ sin θ).
+            let angular_velocity = Vector3::new(
+                omega * sin_yaw,
+                -omega * cos_yaw * cos_roll,
+                -omega * cos_yaw * sin_roll + yaw_rate + vx * kappa,
+            );
             let centre_velocity = Vector3::new(vx * (1.0 - kappa * input.y), vy, 0.0);
-            let v = centre_velocity + angular_velocity.cross(&arm) - rail.velocity_at(&arm);
+            let v = centre_velocity + angular_velocity.cross(&arm) - rail.velocity_at(&rail_arm);
             let (e_y, e_z) = contact_axes_of(sigma, angle_trig);
             let creepage = Creepage {
                 xi: v.x / speed,
