@@ -22,6 +22,7 @@
 
 mod dissipation;
 mod figures;
+mod manchester;
 pub mod plot;
 mod reference;
 mod study;
@@ -249,7 +250,13 @@ pub(crate) fn run(args: &ReportArgs) -> Result<i32, Failure> {
     };
     out.figure(ReportFigure::Dissipation(figure), t)?;
     let t = Instant::now();
-    let wheel_forces = wheel::section(&study)? + &dissipation::section(&panels);
+    let manchester = match (&reference_dir, &profiles) {
+        (Some(reference), Some(profiles)) => {
+            manchester::section(central_values(Some(profiles)), reference)?
+        }
+        _ => String::new(),
+    };
+    let wheel_forces = wheel::section(&study)? + &manchester + &dissipation::section(&panels);
     eprintln!(
         "railcontact report: wheel forces against the exact solution in {:.2} s",
         t.elapsed().as_secs_f64()
