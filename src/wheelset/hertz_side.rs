@@ -146,18 +146,23 @@ pub(super) fn group_ellipse(
     dz: f64,
     b_floor: f64,
 ) -> Result<Option<(ContactPoint, PatchResult)>, InputError> {
-    let (gauge, field) = group_bounds(candidates, ridges, group, scan);
-    // The deepest gap, and no deeper than the interpolant the moments below integrate: the
-    // patch starts from nothing as the lowering reaches it.
-    let deepest = candidates[group.first..=group.last]
+    // The deepest gap, and no deeper than the interpolant the moments below integrate (whose
+    // minima are the candidates): the patch starts from nothing as the lowering reaches it.
+    let group_candidates = &candidates[group.first..=group.last];
+    let refined = group_candidates
         .iter()
         .map(|c| c.gap)
-        .fold(f64::INFINITY, f64::min)
-        .max(geometry.lowest_between(gauge, field));
+        .fold(f64::INFINITY, f64::min);
+    let interpolated = group_candidates
+        .iter()
+        .map(|c| geometry.lowest_near(c.lateral))
+        .fold(f64::INFINITY, f64::min);
+    let deepest = refined.max(interpolated);
     let depth = dz - deepest;
     if depth.is_nan() || depth <= 0.0 {
         return Ok(None);
     }
+    let (gauge, field) = group_bounds(candidates, ridges, group, scan);
     let virtual_depth = VIRTUAL_FRACTION * depth;
     let Some(moments) = geometry.depth_moments(gauge, field, deepest + virtual_depth) else {
         return Ok(None);
