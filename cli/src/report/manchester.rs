@@ -109,52 +109,65 @@ fn column_after(
         .collect()
 }
 
-fn states<T>(path: &Path, rows: Vec<T>) -> Result<Vec<T>, Failure> {
-    if rows.len() == STATES {
-        Ok(rows)
-    } else {
-        Err(Failure::Error(format!(
-            "{}: {} states, expected {STATES}",
-            path.display(),
-            rows.len()
-        )))
+/// Per state, the columns `spec` = (label, lines after it, index) of the file `path`: one
+/// value of each for each of the [`STATES`] states.
+fn states<const N: usize>(
+    path: &Path,
+    spec: [(&str, usize, usize); N],
+) -> Result<Vec<[f64; N]>, Failure> {
+    let text = read(path)?;
+    let mut columns = Vec::with_capacity(N);
+    for (label, offset, index) in spec {
+        let column = column_after(path, &text, label, offset, index)?;
+        if column.len() != STATES {
+            return Err(Failure::Error(format!(
+                "{}: {} states under {label:?}, expected {STATES}",
+                path.display(),
+                column.len()
+            )));
+        }
+        columns.push(column);
     }
+    Ok((0..STATES)
+        .map(|k| std::array::from_fn(|c| columns[c][k]))
+        .collect())
 }
 
 /// The states of CONTACT's input file `path`.
 fn poses(path: &Path) -> Result<Vec<Pose>, Failure> {
-    let text = read(path)?;
-    let pose = column_after(path, &text, "S, Y, FZ, ROLL, YAW, PITCH", 0, 1)?;
-    let roll = column_after(path, &text, "S, Y, FZ, ROLL, YAW, PITCH", 0, 3)?;
-    let yaw = column_after(path, &text, "S, Y, FZ, ROLL, YAW, PITCH", 0, 4)?;
-    let vpitch = column_after(path, &text, "S, Y, FZ, ROLL, YAW, PITCH", 1, 5)?;
-    let rows = (0..pose.len().min(roll.len()).min(yaw.len()).min(vpitch.len()))
-        .map(|k| Pose {
-            y_mm: pose[k],
-            roll: roll[k],
-            yaw: yaw[k],
-            vpitch: vpitch[k],
+    let label = "S, Y, FZ, ROLL, YAW, PITCH";
+    let rows = states(
+        path,
+        [(label, 0, 1), (label, 0, 3), (label, 0, 4), (label, 1, 5)],
+    )?;
+    Ok(rows
+        .into_iter()
+        .map(|[y_mm, roll, yaw, vpitch]| Pose {
+            y_mm,
+            roll,
+            yaw,
+            vpitch,
         })
-        .collect();
-    states(path, rows)
+        .collect())
 }
 
 /// CONTACT's solutions in its output file `path`.
 fn solutions(path: &Path) -> Result<Vec<Exact>, Failure> {
-    let text = read(path)?;
-    let fy = column_after(path, &text, "FX(TR)      FY(TR)", 1, 1)?;
-    let angle = column_after(path, &text, "DELTCP(TR)", 1, 3)?;
-    let z = column_after(path, &text, "XCP(W)", 1, 2)?;
-    let approach = column_after(path, &text, "APPROACH", 1, 3)?;
-    let rows = (0..fy.len().min(angle.len()).min(z.len()).min(approach.len()))
-        .map(|k| Exact {
-            fy_track: fy[k],
-            angle: angle[k],
-            z_wheel_mm: z[k],
-            approach_mm: approach[k],
+    let spec = [
+        ("FX(TR)      FY(TR)", 1, 1),
+        ("DELTCP(TR)", 1, 3),
+        ("XCP(W)", 1, 2),
+        ("APPROACH", 1, 3),
+    ];
+    Ok(states(path, spec)?
+        .into_iter()
+        .map(|[fy_track, angle, z_wheel_mm, approach_mm]| Exact {
+            fy_track,
+            angle,
+            z_wheel_mm,
+            approach_mm,
         })
-        .collect();
-    states(path, rows)
+        .collect())
 }
 
 /// The case's values: `base` (the central case on the benchmark profiles) with the case's
