@@ -64,7 +64,7 @@
 //!   displacement: the strip lengths are as good as that ratio (against the exact half-space on
 //!   S1002/UIC60, −1…+6 mm: area −2.5…+2.2 %; Manchester A-2.2's flange states: −6…−8 %).
 //! * A changing pose costs 2–5 solves of C2–C3 per normal solve (a steady pose one): on the
-//!   hunting wheelset 3.2 M instructions per wheelset solve, 6.7 × ANALYN's (1.47 × steady).
+//!   hunting wheelset 3.2 M instructions per wheelset solve, 6.7 × ANALYN's (1.46 × steady).
 //! * The fixed point of C1–C4 is not proven unique: on a two-region gap (`two_wells(120)` of
 //!   the tests) two iteration schemes settled at normal forces 0.4 % apart; warm and cold starts
 //!   agree on the tested sequences (1e−9).
