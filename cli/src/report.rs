@@ -537,7 +537,9 @@ impl Document<'_> {
              theory, on the central case of `tests/data/README.md`: normal contact (patch area, \
              maximum pressure, maximum pressure per strip), pure spin (forces, spin moment, slip \
              zone) and creep-force curves; the wheel's forces over lateral shifts against the \
-             exact solution of the whole wheel (\"Wheel forces\"); and the frictional power \
+             exact solution of the whole wheel (\"Wheel forces\"), and on the Manchester \
+             benchmark's yawed wheelset against CONTACT's solution of each wheel; and the \
+             frictional power \
              across the patch against the exact steady rolling solution (\"Frictional power \
              across the patch\"). CONTACT's numbers are read from \
              its solutions in the reference directory; railcontact's are computed by the FMU's own \
