@@ -9,8 +9,11 @@
 //!   its field side: −Fy of the right wheel against CONTACT's FY(TR) of the right wheel, Fy of the
 //!   left against −FY(TR) of the left (CONTACT's left side is mirrored); errors in % of μQ.
 //! * **Contact angle** of the heaviest patch (right wheel −DELTCP(TR), left +DELTCP(TR)) and its
-//!   **rolling radius** against r0 + ZCP(W) (the reference point's height on CONTACT's wheel
-//!   profile), on the tread states (reference angle below [`TREAD_MAX_ANGLE`]).
+//!   **rolling radius** against r0 + ZCP(W) + the approach (CONTACT's reference point lies on
+//!   the rail's undeformed surface, ZCP(W) its height on the wheel profile), on the tread states
+//!   (reference angle below [`TREAD_MAX_ANGLE`]).
+//! * **Configurations**: every normal model with its own tangential pairing, ANALYN and the
+//!   coupled strips with the other options, and FASTSIM's flexibilities blended.
 
 use super::plot::model_label;
 use super::study::{tangential_code, Options, Runner, Study};
@@ -68,10 +71,12 @@ impl Exact {
     }
 }
 
-/// The numbers of a line, CONTACT's "10000." included.
+/// The leading numbers of a line, CONTACT's "10000." included, up to its first other field (a
+/// label after them, or a field that is no number: the columns behind it are not read, never
+/// shifted).
 fn numbers(line: &str) -> Vec<f64> {
     line.split_whitespace()
-        .filter_map(|x| x.trim_end_matches('.').parse::<f64>().ok())
+        .map_while(|x| x.trim_end_matches('.').parse::<f64>().ok())
         .collect()
 }
 
@@ -507,6 +512,19 @@ mod tests {
         };
         assert!(
             message.contains("short.ref_out") && message.contains("20 states"),
+            "{message}"
+        );
+        // A field Fortran could not print: the columns behind it are not read, never shifted.
+        let starred = empty.join("starred.ref_out");
+        let first = text.find("      0.2783       36.24").unwrap();
+        let mut bad = text.clone();
+        bad.replace_range(first..first + 24, "      0.2783       *****");
+        std::fs::write(&starred, bad).unwrap();
+        let Err(Failure::Error(message)) = solutions(&starred) else {
+            panic!("a starred field was accepted");
+        };
+        assert!(
+            message.contains("starred.ref_out") && message.contains("no value 2"),
             "{message}"
         );
     }
