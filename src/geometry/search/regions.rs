@@ -255,27 +255,34 @@ impl WheelOnRail {
 
 /// The least value of the cubic `c` on [t0, t1]: at an end or where its slope vanishes.
 fn cubic_minimum(c: &[f64; 4], t0: f64, t1: f64) -> f64 {
-    let mut least = cubic_at(c, t0).min(cubic_at(c, t1));
-    // c1 + 2 c2 t + 3 c3 t² = 0.
-    let (a, b, q) = (3.0 * c[3], 2.0 * c[2], c[1]);
-    let mut critical = |t: f64| {
-        if t > t0 && t < t1 {
-            least = least.min(cubic_at(c, t));
-        }
-    };
-    if a == 0.0 {
-        if b != 0.0 {
-            critical(-q / b);
-        }
-    } else {
-        let disc = b * b - 4.0 * a * q;
+    critical_points(c)
+        .into_iter()
+        .filter(|&t| t > t0 && t < t1)
+        .fold(cubic_at(c, t0).min(cubic_at(c, t1)), |least, t| {
+            least.min(cubic_at(c, t))
+        })
+}
+
+/// The critical points of the cubic `c` (the roots of c1 + 2 c2 t + 3 c3 t², cancellation-free),
+/// ascending; NaN where there are fewer than two.
+#[inline(always)]
+fn critical_points(c: &[f64; 4]) -> [f64; 2] {
+    let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
+    let mut roots = [f64::NAN; 2];
+    if a != 0.0 {
+        let disc = b * b - 4.0 * a * cc;
         if disc >= 0.0 {
-            let root = disc.sqrt();
-            critical((-b - root) / (2.0 * a));
-            critical((-b + root) / (2.0 * a));
+            let r = disc.sqrt();
+            let q = -0.5 * (b + b.signum() * r);
+            roots = [q / a, if q != 0.0 { cc / q } else { f64::NAN }];
         }
+    } else if b != 0.0 {
+        roots[0] = -cc / b;
     }
-    least
+    if roots[0] > roots[1] {
+        roots.swap(0, 1);
+    }
+    roots
 }
 
 /// Coefficients (c0 + c1 t + c2 t² + c3 t³) of level − H(t) on t ∈ [0, 1], H the cubic Hermite
@@ -359,23 +366,7 @@ fn positive_moments(c: &[f64; 4], t0: f64, t1: f64) -> [f64; 3] {
     // Critical points inside (t0, t1), ascending.
     let mut knots = [t0, t1, t1, t1];
     let mut n = 1;
-    let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
-    let mut roots = [f64::NAN; 2];
-    if a != 0.0 {
-        let disc = b * b - 4.0 * a * cc;
-        if disc >= 0.0 {
-            let r = disc.sqrt();
-            // Cancellation-free roots of a t² + b t + c.
-            let q = -0.5 * (b + b.signum() * r);
-            roots = [q / a, if q != 0.0 { cc / q } else { f64::NAN }];
-        }
-    } else if b != 0.0 {
-        roots[0] = -cc / b;
-    }
-    if roots[0] > roots[1] {
-        roots.swap(0, 1);
-    }
-    for r in roots {
+    for r in critical_points(c) {
         if r > t0 && r < t1 {
             knots[n] = r;
             n += 1;
