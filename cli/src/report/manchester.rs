@@ -17,12 +17,13 @@
 
 use super::plot::model_label;
 use super::study::{tangential_code, Options, Runner, Study};
+use super::wheel::heaviest;
 use crate::Failure;
 use railcontact::fmi::variables::Values;
 use railcontact::models::wheel_rail_contact::generated::var;
 use railcontact::normal::NormalModel;
 use railcontact::tangential::patch::TangentialModel;
-use railcontact::wheelset::{PatchResult, SideResult};
+use railcontact::wheelset::SideResult;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -204,14 +205,6 @@ fn solve(runner: &mut Runner, pose: &Pose) -> Result<(SideResult, SideResult), F
     Ok((out.right, out.left))
 }
 
-fn heaviest(side: &SideResult) -> PatchResult {
-    side.all_patches()
-        .iter()
-        .max_by(|a, b| a.fn_.total_cmp(&b.fn_))
-        .copied()
-        .unwrap_or_default()
-}
-
 /// Worst and mean errors of one configuration over the states.
 #[derive(Debug, Default)]
 struct Errors {
@@ -219,11 +212,11 @@ struct Errors {
     right_tread: f64,
     right_flange: f64,
     left: f64,
-    sum: f64,
     mean: f64,
     /// Worst |Δγ| on the tread states [rad].
     angle: f64,
-    /// Rolling radius less r0 + ZCP(W) on the tread states: sum, least, largest [m].
+    /// Rolling radius less the undeformed wheel's at CONTACT's reference point on the tread
+    /// states: sum, least, largest [m], and their number.
     radius_sum: f64,
     radius_min: f64,
     radius_max: f64,
@@ -292,11 +285,12 @@ impl Case {
         let r0 = self.study.values().real(var::wheelRadius);
         let mu_q = FRICTION * LOAD;
         let mut e = Errors::default();
+        let mut sum = 0.0;
         for ((pose, right), left) in self.poses.iter().zip(&self.right).zip(&self.left) {
             let (r, l) = solve(&mut runner, pose)?;
             let dr = (-r.force[1] - right.fy_track).abs() / mu_q;
             let dl = (l.force[1] + left.fy_track).abs() / mu_q;
-            e.sum += dr + dl;
+            sum += dr + dl;
             e.left = e.left.max(dl);
             let (pr, pl) = (heaviest(&r), heaviest(&l));
             if right.angle.abs() < TREAD_MAX_ANGLE {
@@ -315,7 +309,7 @@ impl Case {
                 );
             }
         }
-        e.mean = e.sum / (2 * self.poses.len()) as f64;
+        e.mean = sum / (2 * self.poses.len()) as f64;
         Ok(e)
     }
 }

@@ -68,14 +68,19 @@ struct Wheel {
     lever: f64,
 }
 
-fn wheel(side: &SideResult) -> Wheel {
-    let patches = side.all_patches();
-    let normal: f64 = patches.iter().map(|p| p.fn_).sum();
-    let heaviest = patches
+/// The patch of `side` carrying the largest normal force (a default patch where none does).
+pub(super) fn heaviest(side: &SideResult) -> railcontact::wheelset::PatchResult {
+    side.all_patches()
         .iter()
         .max_by(|a, b| a.fn_.total_cmp(&b.fn_))
         .copied()
-        .unwrap_or_default();
+        .unwrap_or_default()
+}
+
+fn wheel(side: &SideResult) -> Wheel {
+    let patches = side.all_patches();
+    let normal: f64 = patches.iter().map(|p| p.fn_).sum();
+    let heaviest = heaviest(side);
     let mean = |f: &dyn Fn(&railcontact::wheelset::PatchResult) -> f64| {
         patches.iter().map(|p| p.fn_ * f(p)).sum::<f64>() / normal
     };
